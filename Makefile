@@ -1,0 +1,52 @@
+# Candela: `make demo` and `make test` do all set-up on a fresh Debian 12 machine.
+BUILD ?= build
+JOBS ?= $(shell nproc)
+PYTHON := /usr/bin/python3.11
+# Blender and the tests must not inherit another interpreter's environment (pyenv, virtualenv).
+CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
+
+DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
+    python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib
+
+.PHONY: all deps build demo test bench install-addon clean test-native test-blender
+
+all: build
+
+# Installs the Debian packages that are missing (apt-get update + install, as root or through sudo).
+deps:
+	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing missing Debian packages:" $$missing; \
+	  if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
+	  $$SUDO apt-get update && $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $$missing; \
+	fi
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=$(PYTHON)
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	$(CLEAN_ENV) bin/candela-blender -b --factory-startup -noaudio --python-exit-code 1 --python examples/demo.py -- --out out
+
+test: build
+	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -j 2
+
+test-native: build
+	cd $(BUILD) && ctest --output-on-failure -L native -j 2
+
+test-blender: build
+	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -L blender
+
+bench: build
+	$(CLEAN_ENV) $(PYTHON) bench/bench.py --build $(BUILD)
+
+# Installs the built add-on (with its native module) into the user's Blender 3.4 add-on folder.
+install-addon: build
+	@dest="$${BLENDER_USER_SCRIPTS:-$$HOME/.config/blender/3.4/scripts}/addons/candela"; \
+	rm -rf "$$dest" && mkdir -p "$$(dirname "$$dest")" && cp -r $(BUILD)/scripts/addons/candela "$$dest" && \
+	echo "Installed to $$dest; enable 'Render: Candela' in Edit > Preferences > Add-ons (or run blender --addons candela)"
+
+clean:
+	rm -rf $(BUILD) out

@@ -1,0 +1,13 @@
+// Writing images as OpenEXR (the only OpenEXR include in Candela).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace candela {
+
+/// Writes RGBA float32 pixels stored bottom row first (Blender's order) as a scene-linear EXR
+/// (half-float channels are not used: values above 65504 stay exact). Throws InternalError on failure.
+void write_exr_rgba(const std::string& path, int width, int height, const std::vector<float>& rgba_bottom_up);
+
+}  // namespace candela

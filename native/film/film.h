@@ -1,0 +1,90 @@
+// The film: per-pixel accumulation of camera-path samples (filter importance sampled, so each sample
+// has weight 1 and lands in its own pixel) plus splats from anywhere on the image (light tracing,
+// bidirectional and Metropolis contributions). Pixels live in tiles; a worker adds a whole tile's pass
+// under that tile's lock, and readers copy tile by tile, so progressive display never sees half-written
+// pixels. Sums are double precision and a pixel's sum depends only on its own samples, added in sample
+// order: images do not depend on thread count. Splats are merged in work-item order for the same reason.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "core/vec.h"
+
+namespace candela {
+
+struct PixelAccum {
+    double r = 0, g = 0, b = 0, a = 0;
+    double lum_sq = 0;  // Σ luminance² (per-pixel variance for noise estimates)
+    uint32_t n = 0;
+
+    void add(const Color& c, float alpha) {
+        r += c.x;
+        g += c.y;
+        b += c.z;
+        a += alpha;
+        const double l = luminance(c);
+        lum_sq += l * l;
+        ++n;
+    }
+    void add(const PixelAccum& o) {
+        r += o.r; g += o.g; b += o.b; a += o.a; lum_sq += o.lum_sq; n += o.n;
+    }
+};
+
+struct Tile {
+    int x0, y0, x1, y1;  // film pixel range, x1/y1 exclusive
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+};
+
+/// Contributions a work item deposits anywhere on the film (film pixel coordinates).
+struct SplatBuffer {
+    struct Entry {
+        uint32_t pixel;
+        Color value;
+    };
+    std::vector<Entry> entries;
+};
+
+class Film {
+public:
+    /// width × height pixels; (origin_x, origin_y) is the film's position in the full frame (a border).
+    Film(int width, int height, int origin_x = 0, int origin_y = 0, int tile_size = 32);
+
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+    int origin_x() const { return m_origin_x; }
+    int origin_y() const { return m_origin_y; }
+    const std::vector<Tile>& tiles() const { return m_tiles; }
+
+    /// Adds a tile's worth of accumulated samples (row-major within the tile).
+    void add_tile(size_t tile_index, const std::vector<PixelAccum>& tile_pixels);
+    /// Merges splat buffers in the given order; `scale` multiplies them when resolving (1/paths).
+    void add_splats(const std::vector<SplatBuffer>& buffers);
+    void set_splat_scale(double scale);
+
+    /// "Combined" as RGBA float32, rows bottom to top (Blender's order); (W·H·4) floats.
+    std::vector<float> combined() const;
+    /// Per-pixel sample variance of the luminance estimate (one channel).
+    std::vector<float> variance() const;
+    /// Samples taken per pixel (minimum over the film).
+    uint32_t min_samples() const;
+
+private:
+    template <typename F>
+    void for_each_tile_locked(F&& f) const;
+
+    int m_width, m_height, m_origin_x, m_origin_y;
+    std::vector<Tile> m_tiles;
+    std::vector<PixelAccum> m_pixels;  // row-major, bottom row first
+    std::vector<Color> m_splats;
+    double m_splat_scale = 1.0;
+    std::unique_ptr<std::mutex[]> m_tile_locks;
+    mutable std::mutex m_splat_lock;
+};
+
+}  // namespace candela

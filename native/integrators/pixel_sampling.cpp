@@ -1,0 +1,20 @@
+#include "integrators/pixel_sampling.h"
+
+#include "core/error.h"
+#include "sampling/sampler.h"
+
+namespace candela {
+
+PixelSampling PixelSampling::from_params(const Params& params) {
+    PixelSampling s;
+    s.samples = params.get<int>("samples", 64);
+    if (s.samples < 1 || s.samples > (1 << 24)) throw InvalidParameter("samples must be between 1 and 16777216");
+    s.seed = static_cast<uint64_t>(params.get<int64_t>("seed", 0));
+    s.sampler = params.get_enum("sampler", "RANDOM", sampler_names());
+    s.filter = PixelFilter(params.get_enum("pixel_filter", "BLACKMAN_HARRIS", PixelFilter::names()),
+                           params.get<float>("filter_width", 1.5f));
+    s.film_transparent = params.get<bool>("film_transparent", false);
+    return s;
+}
+
+}  // namespace candela

@@ -1,0 +1,39 @@
+// What an integrator gets besides the scene and the film: the cancel flag, the thread count and the
+// counters the session reports as progress and statistics.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "core/parallel.h"
+
+namespace candela {
+
+struct RenderCounters {
+    std::atomic<int> samples_done{0};   // samples per pixel completed over the whole film
+    std::atomic<int> samples_total{0};
+    std::atomic<uint64_t> paths{0};     // camera paths traced
+    std::atomic<uint64_t> rays{0};      // rays cast (camera, bounce and shadow rays)
+    std::atomic<uint64_t> nan_samples{0};  // non-finite or negative samples dropped before the film
+};
+
+struct RenderContext {
+    const CancelToken& cancel;
+    RenderCounters& counters;
+    int threads = 0;
+};
+
+/// Per-thread statistics gathered by a tracer, folded into RenderCounters once per tile.
+struct PathStats {
+    uint64_t rays = 0;
+    uint64_t paths = 0;
+    uint64_t nan_samples = 0;
+
+    void flush(RenderCounters& c) const {
+        c.rays.fetch_add(rays, std::memory_order_relaxed);
+        c.paths.fetch_add(paths, std::memory_order_relaxed);
+        c.nan_samples.fetch_add(nan_samples, std::memory_order_relaxed);
+    }
+};
+
+}  // namespace candela

@@ -1,0 +1,67 @@
+// The progressive tile loop shared by camera-driven integrators. The image is refined in passes of
+// growing sample counts (1, 1, 2, 4, …, 16 samples per pixel), each pass running over all tiles in
+// parallel, so the user sees the whole frame early and a cancel lands within one tile of one pass.
+// Sample k of pixel (x, y) always uses sampler state (seed, x, y, k): results are the same for any
+// thread count and tile order.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "film/film.h"
+#include "integrators/pixel_sampling.h"
+#include "integrators/render_context.h"
+#include "sampling/sampler.h"
+#include "scene/scene.h"
+
+namespace candela {
+
+/// Tracer: `Color Li(const Ray&, Sampler&, PathStats&, float* alpha) const`.
+template <typename Tracer>
+void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, const PixelSampling& ps,
+                        const Tracer& tracer) {
+    const Camera& camera = scene.camera();
+    ctx.counters.samples_total = ps.samples;
+    int done = 0, pass_size = 1;
+    while (done < ps.samples && !ctx.cancel.cancelled()) {
+        const int begin = done, end = std::min(ps.samples, done + pass_size);
+        parallel_for(
+            ctx.threads, film.tiles().size(),
+            [&](size_t tile_index) {
+                const Tile& tile = film.tiles()[tile_index];
+                std::vector<PixelAccum> accum(size_t(tile.width()) * tile.height());
+                Sampler sampler = make_sampler(ps.sampler, ps.seed, ps.samples);
+                PathStats stats;
+                for (int y = tile.y0; y < tile.y1; ++y) {
+                    for (int x = tile.x0; x < tile.x1; ++x) {
+                        const int fx = film.origin_x() + x, fy = film.origin_y() + y;  // full-frame pixel
+                        PixelAccum& acc = accum[size_t(y - tile.y0) * tile.width() + (x - tile.x0)];
+                        for (int s = begin; s < end; ++s) {
+                            start_pixel_sample(sampler, uint32_t(fx), uint32_t(fy), uint32_t(s));
+                            const Vec2 offset = ps.filter.sample(get_pixel_2d(sampler));
+                            const Ray ray = camera.generate_ray({fx + 0.5f + offset.x, fy + 0.5f + offset.y});
+                            float alpha = 1.f;
+                            Color L = tracer.Li(ray, sampler, stats, &alpha);
+                            ++stats.paths;
+                            // Non-finite or negative radiance never reaches the film: drop and count it.
+                            if (!is_finite(L) || min_component(L) < 0.f) {
+                                ++stats.nan_samples;
+                                L = Color(0.f);
+                            }
+                            acc.add(L, alpha);
+                        }
+                    }
+                }
+                film.add_tile(tile_index, accum);
+                stats.flush(ctx.counters);
+            },
+            &ctx.cancel);
+        if (ctx.cancel.cancelled()) break;  // a partly rendered pass stays in the film as it is
+        done = end;
+        ctx.counters.samples_done = done;
+        pass_size = std::min(pass_size * 2, 16);
+        if (done == 1) pass_size = 1;
+    }
+}
+
+}  // namespace candela

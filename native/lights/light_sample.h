@@ -1,0 +1,29 @@
+// What light sampling hands an integrator.
+#pragma once
+
+#include "core/vec.h"
+
+namespace candela {
+
+/// The shading point a light is sampled from.
+struct LightSampleContext {
+    Vec3 p;  // position (world, camera-relative)
+    Vec3 n;  // shading normal (may be zero for points in media)
+};
+
+struct LightSample {
+    Color Li;              // incident radiance (or, for delta lights, intensity/d² folded in) along -wi
+    Vec3 wi;               // unit direction from the shading point toward the light
+    float dist = 0.f;      // distance to the sampled point (infinity for distant lights)
+    float pdf = 0.f;       // solid-angle pdf of wi (1 for delta lights); 0 = no sample
+    bool is_delta = false; // never reached by BSDF sampling (delta, or NEE-only): weight 1, no MIS
+
+    bool valid() const { return pdf > 0.f && !is_black(Li); }
+};
+
+/// Area-to-solid-angle conversion: p_ω = p_A · d² / |cos θ_light|.
+inline float area_to_solid_angle(float pdf_area, float dist_sq, float cos_light) {
+    return cos_light > 1e-7f ? pdf_area * dist_sq / cos_light : 0.f;
+}
+
+}  // namespace candela

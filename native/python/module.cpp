@@ -1,0 +1,171 @@
+// candela._native: the pybind11 boundary (docs/architecture.md). Flat numpy arrays and a params dict in,
+// a Session out. Blocking calls release the GIL; no worker thread ever calls into Python.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bsdf/material.h"
+#include "core/error.h"
+#include "film/pixel_filter.h"
+#include "integrators/integrator.h"
+#include "lights/light.h"
+#include "sampling/sampler.h"
+#include "session/session.h"
+
+namespace py = pybind11;
+using namespace candela;
+
+namespace {
+
+constexpr int k_abi_version = 1;
+
+template <typename T>
+void add_array(SceneArrays& arrays, const std::string& key, ElemType type, const py::handle& value) {
+    // forcecast converts dtypes (float64 → float32, int → uint32, bool → uint8); c_style makes it contiguous.
+    py::array_t<T, py::array::c_style | py::array::forcecast> a;
+    try {
+        a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(value);
+    } catch (const py::error_already_set&) {
+    }
+    if (!a) throw InvalidScene("scene array '" + key + "' cannot be converted to " + elem_type_name(type));
+    std::vector<size_t> shape(a.shape(), a.shape() + a.ndim());
+    arrays.set(key, type, std::move(shape), a.data());
+}
+
+SceneArrays arrays_from_dict(const py::dict& dict, std::vector<std::string>* unknown) {
+    SceneArrays arrays;
+    for (const auto& item : dict) {
+        const std::string key = py::str(item.first);
+        const ArraySpec* spec = find_array_spec(key);
+        if (!spec) {
+            unknown->push_back(key);
+            continue;
+        }
+        switch (spec->type) {
+            case ElemType::F32: add_array<float>(arrays, key, spec->type, item.second); break;
+            case ElemType::U32: add_array<uint32_t>(arrays, key, spec->type, item.second); break;
+            case ElemType::U8: add_array<uint8_t>(arrays, key, spec->type, item.second); break;
+        }
+    }
+    return arrays;
+}
+
+Params params_from_dict(const py::dict& dict) {
+    Params params;
+    for (const auto& item : dict) {
+        const std::string key = py::str(item.first);
+        const py::handle v = item.second;
+        if (py::isinstance<py::bool_>(v)) params.set(key, v.cast<bool>());
+        else if (py::isinstance<py::int_>(v)) params.set(key, v.cast<int64_t>());
+        else if (py::isinstance<py::float_>(v)) params.set(key, v.cast<double>());
+        else if (py::isinstance<py::str>(v)) params.set(key, v.cast<std::string>());
+        else if (py::hasattr(v, "item")) {  // numpy scalar
+            const py::object s = v.attr("item")();
+            if (py::isinstance<py::bool_>(s)) params.set(key, s.cast<bool>());
+            else if (py::isinstance<py::int_>(s)) params.set(key, s.cast<int64_t>());
+            else if (py::isinstance<py::float_>(s)) params.set(key, s.cast<double>());
+            else throw InvalidParameter("parameter '" + key + "' has an unsupported type");
+        } else {
+            throw InvalidParameter("parameter '" + key + "' must be a bool, int, float or str");
+        }
+    }
+    return params;
+}
+
+std::unique_ptr<Session> make_session(const py::dict& arrays_dict, const py::dict& params_dict) {
+    std::vector<std::string> unknown;
+    SceneArrays arrays = arrays_from_dict(arrays_dict, &unknown);
+    Params params = params_from_dict(params_dict);
+    std::unique_ptr<Session> session;
+    {
+        py::gil_scoped_release release;  // validation of millions of triangles needs no Python
+        session = std::make_unique<Session>(std::move(arrays), std::move(params));
+    }
+    return session;
+}
+
+py::dict capabilities() {
+    py::dict d;
+    py::list integrators;
+    for (const auto& e : integrator_registry()) integrators.append(py::make_tuple(e.name, e.description));
+    d["integrators"] = integrators;
+    d["samplers"] = sampler_names();
+    d["pixel_filters"] = PixelFilter::names();
+    d["material_columns"] = material_columns();
+    d["light_columns"] = light_columns();
+    py::dict light_types, material_types;
+    for (size_t i = 0; i < light_type_names().size(); ++i) light_types[py::str(light_type_names()[i])] = i;
+    for (size_t i = 0; i < material_type_names().size(); ++i) material_types[py::str(material_type_names()[i])] = i;
+    d["light_types"] = light_types;
+    d["material_types"] = material_types;
+    py::list passes;
+    for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
+    d["passes"] = passes;
+    return d;
+}
+
+py::object get_pass(const Session& s, const std::string& name) {
+    int channels = 0;
+    std::vector<float> data;
+    {
+        py::gil_scoped_release release;
+        data = s.get_pass(name, &channels);
+    }
+    if (channels == 0) return py::none();
+    const size_t pixels = size_t(s.width()) * s.height();
+    py::array_t<float> out({pixels, size_t(channels)});
+    std::copy(data.begin(), data.end(), out.mutable_data());
+    return std::move(out);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_native, m) {
+    m.doc() = "Candela's native renderer core";
+    m.attr("ABI_VERSION") = k_abi_version;
+    m.def("capabilities", &capabilities, "Integrators, samplers, filters and array column layouts");
+
+    py::register_exception<InvalidScene>(m, "InvalidScene", PyExc_ValueError);
+    py::register_exception<InvalidParameter>(m, "InvalidParameter", PyExc_ValueError);
+    py::register_exception<InternalError>(m, "InternalError", PyExc_RuntimeError);
+
+    py::class_<Session>(m, "Session")
+        .def(py::init(&make_session), py::arg("arrays"), py::arg("params"))
+        .def("start", &Session::start)
+        .def("wait", &Session::wait, py::arg("timeout_s"), py::call_guard<py::gil_scoped_release>())
+        .def("cancel", &Session::cancel)
+        .def("join", &Session::join, py::call_guard<py::gil_scoped_release>())
+        .def("progress",
+             [](const Session& s) {
+                 const SessionProgress p = s.progress();
+                 py::dict d;
+                 d["phase"] = phase_name(p.phase);
+                 d["samples_done"] = p.samples_done;
+                 d["samples_total"] = p.samples_total;
+                 d["fraction"] = p.fraction;
+                 d["elapsed_s"] = p.elapsed_s;
+                 return d;
+             })
+        .def("stats",
+             [](const Session& s) {
+                 const SessionStats st = s.stats();
+                 py::dict d;
+                 d["build_seconds"] = st.build_seconds;
+                 d["render_seconds"] = st.render_seconds;
+                 d["samples_per_second"] = st.samples_per_second;
+                 d["paths"] = st.paths;
+                 d["rays"] = st.rays;
+                 d["nan_samples"] = st.nan_samples;
+                 d["unique_triangles"] = st.scene.unique_triangles;
+                 d["instanced_triangles"] = st.scene.instanced_triangles;
+                 d["meshes"] = st.scene.meshes;
+                 d["instances"] = st.scene.instances;
+                 d["emissive_triangles"] = st.scene.emissive_triangles;
+                 return d;
+             })
+        .def("get_pass", &get_pass, py::arg("name"))
+        .def("take_log", &Session::take_log)
+        .def_property_readonly("error", &Session::error)
+        .def_property_readonly("width", &Session::width)
+        .def_property_readonly("height", &Session::height);
+}

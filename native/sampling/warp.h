@@ -1,0 +1,68 @@
+// Warps from the unit square to common domains, each with its density (w.r.t. solid angle or area).
+// References: Shirley & Chiu 1997 (concentric disk); Malley's method for the cosine hemisphere;
+// Pharr, Jakob & Humphreys, PBRT 4th ed., §A.5 (uniform sphere, cone, triangle).
+#pragma once
+
+#include <cmath>
+
+#include "core/math.h"
+#include "core/vec.h"
+
+namespace candela {
+
+/// Uniform point on the unit disk, area density 1/π; concentric map keeps strata compact.
+inline Vec2 sample_uniform_disk_concentric(Vec2 u) {
+    const float ox = 2.f * u.x - 1.f, oy = 2.f * u.y - 1.f;
+    if (ox == 0.f && oy == 0.f) return {0.f, 0.f};
+    float r, theta;
+    if (std::fabs(ox) > std::fabs(oy)) {
+        r = ox;
+        theta = (k_pi / 4.f) * (oy / ox);
+    } else {
+        r = oy;
+        theta = (k_pi / 2.f) - (k_pi / 4.f) * (ox / oy);
+    }
+    return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+/// Cosine-weighted direction about +z (Malley): pdf = cos θ / π.
+inline Vec3 sample_cosine_hemisphere(Vec2 u) {
+    const Vec2 d = sample_uniform_disk_concentric(u);
+    const float z = safe_sqrt(1.f - d.x * d.x - d.y * d.y);
+    return {d.x, d.y, z};
+}
+inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.f ? cos_theta * k_inv_pi : 0.f; }
+
+/// Uniform direction on the unit sphere: pdf = 1/(4π).
+inline Vec3 sample_uniform_sphere(Vec2 u) {
+    const float z = 1.f - 2.f * u.x;
+    const float r = safe_sqrt(1.f - z * z);
+    const float phi = 2.f * k_pi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline constexpr float uniform_sphere_pdf() { return k_inv_four_pi; }
+
+/// Uniform direction in the cone of half-angle acos(cos_max) about +z: pdf = 1/(2π(1 − cos_max)).
+inline Vec3 sample_uniform_cone(Vec2 u, float cos_max) {
+    const float cos_t = (1.f - u.x) + u.x * cos_max;
+    const float sin_t = safe_sqrt(1.f - cos_t * cos_t);
+    const float phi = 2.f * k_pi * u.y;
+    return {std::cos(phi) * sin_t, std::sin(phi) * sin_t, cos_t};
+}
+inline float uniform_cone_pdf(float cos_max) { return 1.f / (2.f * k_pi * (1.f - cos_max)); }
+
+/// Uniform barycentrics (b0, b1) on a triangle (Heitz 2019, "A Low-Distortion Map Between Triangle and
+/// Square"): area density 1/A.
+inline Vec2 sample_uniform_triangle(Vec2 u) {
+    float b0, b1;
+    if (u.x < u.y) {
+        b0 = u.x / 2.f;
+        b1 = u.y - b0;
+    } else {
+        b1 = u.y / 2.f;
+        b0 = u.x - b1;
+    }
+    return {b0, b1};
+}
+
+}  // namespace candela

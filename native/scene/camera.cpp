@@ -1,0 +1,91 @@
+#include "scene/camera.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace candela {
+
+Camera::Camera(const Params& params, const Affine& camera_to_world) : m_to_world(camera_to_world) {
+    m_width = params.require<int>("width");
+    m_height = params.require<int>("height");
+    if (m_width <= 0 || m_height <= 0)
+        throw InvalidParameter("resolution " + std::to_string(m_width) + "x" + std::to_string(m_height) +
+                               " is empty: width and height must be at least 1 pixel");
+    const std::string type = params.get_enum("camera_type", "PERSP", {"PERSP", "ORTHO"});
+    const std::string fit = params.get_enum("sensor_fit", "AUTO", {"AUTO", "HORIZONTAL", "VERTICAL"});
+    const float sensor_width = params.get<float>("sensor_width", 36.f);
+    const float sensor_height = params.get<float>("sensor_height", 24.f);
+    const float lens = params.get<float>("lens", 50.f);
+    const float ortho_scale = params.get<float>("ortho_scale", 6.f);
+    const float shift_x = params.get<float>("shift_x", 0.f), shift_y = params.get<float>("shift_y", 0.f);
+    const float pixel_aspect_x = params.get<float>("pixel_aspect_x", 1.f);
+    const float pixel_aspect_y = params.get<float>("pixel_aspect_y", 1.f);
+    m_clip_start = params.get<float>("clip_start", 0.1f);
+    m_clip_end = params.get<float>("clip_end", 1000.f);
+    if (!(lens > 0.f) || !(sensor_width > 0.f) || !(sensor_height > 0.f) || !(ortho_scale > 0.f))
+        throw InvalidParameter("camera lens, sensor size and orthographic scale must be positive");
+    if (!(m_clip_start >= 0.f) || !(m_clip_end > m_clip_start))
+        throw InvalidParameter("camera clip_end must be greater than clip_start >= 0");
+    m_ortho = type == "ORTHO";
+
+    const float xratio = m_width * pixel_aspect_x, yratio = m_height * pixel_aspect_y;
+    bool horizontal = fit == "HORIZONTAL";
+    float sensor = fit == "VERTICAL" ? sensor_height : sensor_width;
+    if (fit == "AUTO") horizontal = xratio > yratio;
+    float aspect, xaspect, yaspect;
+    if (horizontal) {
+        aspect = xratio / yratio;
+        xaspect = aspect;
+        yaspect = 1.f;
+    } else {
+        aspect = yratio / xratio;
+        xaspect = 1.f;
+        yaspect = aspect;
+    }
+    if (m_ortho) {
+        // The viewplane spans ortho_scale along the fitted dimension.
+        xaspect = xaspect * ortho_scale / (aspect * 2.f);
+        yaspect = yaspect * ortho_scale / (aspect * 2.f);
+        aspect = ortho_scale / 2.f;
+    }
+    m_left = -xaspect;
+    m_right = xaspect;
+    m_bottom = -yaspect;
+    m_top = yaspect;
+    const float dx = 2.f * aspect * shift_x, dy = 2.f * aspect * shift_y;
+    m_left += dx;
+    m_right += dx;
+    m_bottom += dy;
+    m_top += dy;
+    // fov spans the viewplane's ±1 axis: 2·atan(0.5·sensor/lens/aspect).
+    m_tan_half_fov = (0.5f * sensor / lens) / (m_ortho ? 1.f : aspect);
+}
+
+void Camera::translate(const Vec3& offset) {
+    for (int r = 0; r < 3; ++r) m_to_world.m[r][3] += offset[r];
+}
+
+Ray Camera::generate_ray(Vec2 raster) const {
+    const float sx = m_left + (raster.x / m_width) * (m_right - m_left);
+    const float sy = m_bottom + (raster.y / m_height) * (m_top - m_bottom);
+    Ray ray;
+    if (m_ortho) {
+        // Blender's orthographic camera starts rays on the clip_start plane.
+        ray.o = m_to_world.point(Vec3(sx, sy, -m_clip_start));
+        ray.d = normalize(m_to_world.vector(Vec3(0.f, 0.f, -1.f)));
+        ray.tmin = 0.f;
+        ray.tmax = m_clip_end - m_clip_start;
+    } else {
+        const Vec3 d_cam = normalize(Vec3(sx * m_tan_half_fov, sy * m_tan_half_fov, -1.f));
+        ray.o = m_to_world.translation();
+        ray.d = normalize(m_to_world.vector(d_cam));
+        // Clip distances are measured along the view axis.
+        const float inv_cos = 1.f / -d_cam.z;
+        ray.tmin = m_clip_start * inv_cos;
+        ray.tmax = m_clip_end * inv_cos;
+    }
+    return ray;
+}
+
+}  // namespace candela

@@ -1,0 +1,166 @@
+#include "scene/scene_arrays.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+
+namespace candela {
+
+const std::vector<ArraySpec>& array_schema() {
+    static const std::vector<ArraySpec> schema = {
+        {"positions", ElemType::F32, {-1, 3}, true},
+        {"triangles", ElemType::U32, {-1, 3}, true},
+        {"normals", ElemType::F32, {-1, 3, 3}, false},
+        {"tri_smooth", ElemType::U8, {-1}, false},
+        {"tri_material", ElemType::U32, {-1}, true},
+        {"mesh_tri_start", ElemType::U32, {-1}, true},
+        {"instance_mesh", ElemType::U32, {-1}, true},
+        {"instance_transform", ElemType::F32, {-1, 4, 4}, true},
+        {"material_type", ElemType::U32, {-1}, true},
+        {"materials", ElemType::F32, {-1, -1}, true},
+        {"light_type", ElemType::U32, {-1}, false},
+        {"lights", ElemType::F32, {-1, -1}, false},
+        {"camera_to_world", ElemType::F32, {4, 4}, true},
+        {"world_color", ElemType::F32, {3}, false},
+    };
+    return schema;
+}
+
+const ArraySpec* find_array_spec(const std::string& name) {
+    for (const auto& s : array_schema())
+        if (name == s.name) return &s;
+    return nullptr;
+}
+
+size_t element_size(ElemType t) { return t == ElemType::U8 ? 1 : 4; }
+const char* elem_type_name(ElemType t) {
+    switch (t) {
+        case ElemType::F32: return "float32";
+        case ElemType::U32: return "uint32";
+        default: return "uint8";
+    }
+}
+
+size_t Array::count() const {
+    size_t n = 1;
+    for (size_t s : shape) n *= s;
+    return n;
+}
+
+namespace {
+
+std::string shape_str(const std::vector<size_t>& shape) {
+    std::string s = "(";
+    for (size_t i = 0; i < shape.size(); ++i) s += (i ? ", " : "") + std::to_string(shape[i]);
+    return s + (shape.size() == 1 ? ",)" : ")");
+}
+
+std::string spec_shape_str(const std::vector<int>& shape) {
+    std::string s = "(";
+    for (size_t i = 0; i < shape.size(); ++i)
+        s += (i ? ", " : "") + (shape[i] < 0 ? std::string("N") : std::to_string(shape[i]));
+    return s + (shape.size() == 1 ? ",)" : ")");
+}
+
+}  // namespace
+
+void SceneArrays::set(const std::string& name, ElemType type, std::vector<size_t> shape, const void* data) {
+    const ArraySpec* spec = find_array_spec(name);
+    if (!spec) throw InvalidScene("unknown scene array '" + name + "'");
+    if (type != spec->type)
+        throw InvalidScene("scene array '" + name + "' must be " + elem_type_name(spec->type) + ", got " +
+                           elem_type_name(type));
+    bool ok = shape.size() == spec->shape.size();
+    for (size_t i = 0; ok && i < shape.size(); ++i) ok = spec->shape[i] < 0 || size_t(spec->shape[i]) == shape[i];
+    if (!ok)
+        throw InvalidScene("scene array '" + name + "' has shape " + shape_str(shape) + ", expected " +
+                           spec_shape_str(spec->shape));
+    Array a;
+    a.type = type;
+    a.shape = std::move(shape);
+    a.bytes.resize(a.count() * element_size(type));
+    if (!a.bytes.empty()) std::memcpy(a.bytes.data(), data, a.bytes.size());
+    m_arrays[name] = std::move(a);
+}
+
+const Array* SceneArrays::find(const std::string& name) const {
+    auto it = m_arrays.find(name);
+    return it == m_arrays.end() ? nullptr : &it->second;
+}
+
+const Array& SceneArrays::get(const std::string& name) const {
+    const Array* a = find(name);
+    if (!a) throw InvalidScene("scene array '" + name + "' is missing");
+    return *a;
+}
+
+size_t SceneArrays::byte_size() const {
+    size_t n = 0;
+    for (const auto& [k, a] : m_arrays) n += a.bytes.size();
+    return n;
+}
+
+void SceneArrays::validate() const {
+    for (const auto& spec : array_schema())
+        if (spec.required && !has(spec.name)) throw InvalidScene(std::string("scene array '") + spec.name + "' is missing");
+
+    const size_t V = rows("positions"), T = rows("triangles"), K = rows("material_type");
+    const size_t M1 = rows("mesh_tri_start"), I = rows("instance_mesh");
+
+    auto check_finite = [](const Array& a, const char* name, size_t per_row) {
+        const float* p = a.data<float>();
+        for (size_t i = 0; i < a.count(); ++i)
+            if (!std::isfinite(p[i]))
+                throw InvalidScene(std::string(name) + "[" + std::to_string(i / per_row) + "] is not finite");
+    };
+    check_finite(get("positions"), "positions", 3);
+    check_finite(get("instance_transform"), "instance_transform", 16);
+    check_finite(get("camera_to_world"), "camera_to_world", 16);
+    check_finite(get("materials"), "materials", get("materials").shape[1]);
+    if (has("lights")) check_finite(get("lights"), "lights", get("lights").shape[1]);
+    if (has("normals")) check_finite(get("normals"), "normals", 9);
+    if (has("world_color")) check_finite(get("world_color"), "world_color", 3);
+
+    const uint32_t* tri = get("triangles").data<uint32_t>();
+    for (size_t i = 0; i < 3 * T; ++i)
+        if (tri[i] >= V)
+            throw InvalidScene("triangles[" + std::to_string(i / 3) + "] refers to vertex " + std::to_string(tri[i]) +
+                               " but there are only " + std::to_string(V) + " positions");
+    auto check_rows = [&](const char* name, size_t want) {
+        if (has(name) && rows(name) != want)
+            throw InvalidScene(std::string("scene array '") + name + "' has " + std::to_string(rows(name)) +
+                               " rows, expected " + std::to_string(want) + " (one per triangle)");
+    };
+    check_rows("tri_material", T);
+    check_rows("tri_smooth", T);
+    check_rows("normals", T);
+    const uint32_t* mat = get("tri_material").data<uint32_t>();
+    for (size_t i = 0; i < T; ++i)
+        if (mat[i] >= K)
+            throw InvalidScene("tri_material[" + std::to_string(i) + "] = " + std::to_string(mat[i]) + " but there are only " +
+                               std::to_string(K) + " materials");
+    if (rows("materials") != K)
+        throw InvalidScene("'materials' has " + std::to_string(rows("materials")) + " rows but 'material_type' has " +
+                           std::to_string(K));
+
+    if (M1 < 1) throw InvalidScene("'mesh_tri_start' needs at least one entry (0)");
+    const uint32_t* start = get("mesh_tri_start").data<uint32_t>();
+    if (start[0] != 0 || start[M1 - 1] != T)
+        throw InvalidScene("'mesh_tri_start' must start at 0 and end at the triangle count " + std::to_string(T));
+    for (size_t m = 0; m + 1 < M1; ++m)
+        if (start[m + 1] < start[m]) throw InvalidScene("'mesh_tri_start' decreases at mesh " + std::to_string(m));
+
+    if (rows("instance_transform") != I)
+        throw InvalidScene("'instance_transform' has " + std::to_string(rows("instance_transform")) +
+                           " rows but 'instance_mesh' has " + std::to_string(I));
+    const uint32_t* im = get("instance_mesh").data<uint32_t>();
+    for (size_t i = 0; i < I; ++i)
+        if (im[i] + 1 >= M1)
+            throw InvalidScene("instance_mesh[" + std::to_string(i) + "] = " + std::to_string(im[i]) +
+                               " but there are only " + std::to_string(M1 - 1) + " meshes");
+    if (has("lights") != has("light_type") || rows("lights") != rows("light_type"))
+        throw InvalidScene("'lights' and 'light_type' must be given together with the same number of rows");
+}
+
+}  // namespace candela

@@ -1,0 +1,173 @@
+#include "session/session.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+namespace candela {
+
+const char* phase_name(SessionPhase p) {
+    switch (p) {
+        case SessionPhase::Idle: return "idle";
+        case SessionPhase::Building: return "building";
+        case SessionPhase::Rendering: return "rendering";
+        case SessionPhase::Done: return "done";
+        case SessionPhase::Cancelled: return "cancelled";
+        default: return "failed";
+    }
+}
+
+Session::Session(SceneArrays arrays, Params params)
+    : m_arrays(std::make_unique<SceneArrays>(std::move(arrays))), m_params(std::move(params)) {
+    m_arrays->validate();
+    // Everything that can be checked without building the BVH is checked here, on the caller's thread.
+    const int width = m_params.require<int>("width"), height = m_params.require<int>("height");
+    Camera probe(m_params, Affine());  // validates the camera params
+    const int x0 = m_params.get<int>("crop_x0", 0), y0 = m_params.get<int>("crop_y0", 0);
+    const int x1 = m_params.get<int>("crop_x1", width), y1 = m_params.get<int>("crop_y1", height);
+    if (x0 < 0 || y0 < 0 || x1 > width || y1 > height || x0 >= x1 || y0 >= y1)
+        throw InvalidParameter("the border window [" + std::to_string(x0) + ", " + std::to_string(x1) + ") x [" +
+                               std::to_string(y0) + ", " + std::to_string(y1) + ") is empty or outside the frame");
+    // Refuse resolutions whose buffers cannot be allocated before allocating them.
+    const double bytes = double(x1 - x0) * double(y1 - y0) * (sizeof(PixelAccum) + sizeof(Color) + 8 * sizeof(float));
+    if (bytes > 16e9)
+        throw InvalidParameter("a " + std::to_string(x1 - x0) + "x" + std::to_string(y1 - y0) +
+                               " render needs about " + std::to_string(int(bytes / 1e9)) + " GB of film memory");
+    m_threads = resolve_thread_count(m_params.get<int>("threads", 0));
+    m_film = std::make_unique<Film>(x1 - x0, y1 - y0, x0, y0, m_params.get<int>("tile_size", 32));
+    m_integrator = make_integrator(m_params);
+    m_counters.samples_total = m_integrator->samples_per_pixel();
+    for (const auto& key : m_params.unused_keys())
+        if (key != "threads") m_log.push_back("unknown render parameter '" + key + "' was ignored");
+}
+
+Session::~Session() {
+    cancel();
+    join();
+}
+
+void Session::start() {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    if (m_started) throw InvalidParameter("a session renders once: start() was already called");
+    m_started = true;
+    m_phase = SessionPhase::Building;
+    m_start_time = std::chrono::steady_clock::now();
+    m_worker = std::thread([this] { run(); });
+}
+
+void Session::run() {
+    SessionPhase end_phase = SessionPhase::Done;
+    std::optional<std::string> error;
+    try {
+        const auto t0 = std::chrono::steady_clock::now();
+        const Scene scene(*m_arrays, m_params, &m_cancel);
+        m_arrays.reset();  // the scene keeps what it needs
+        const auto t1 = std::chrono::steady_clock::now();
+        {
+            std::lock_guard<std::mutex> lock(m_mutex);
+            m_stats.build_seconds = std::chrono::duration<double>(t1 - t0).count();
+            m_stats.scene = scene.stats();
+            m_phase = SessionPhase::Rendering;
+            m_render_start = t1;
+            if (scene.lights().empty()) m_log.push_back("the scene has no lights and a black world: the image is black");
+        }
+        RenderContext ctx{m_cancel, m_counters, m_threads};
+        m_integrator->render(scene, *m_film, ctx);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+        std::lock_guard<std::mutex> lock(m_mutex);
+        m_stats.render_seconds = seconds;
+        if (m_cancel.cancelled()) end_phase = SessionPhase::Cancelled;
+    } catch (const Cancelled&) {
+        end_phase = SessionPhase::Cancelled;
+    } catch (const std::exception& e) {
+        end_phase = SessionPhase::Failed;
+        error = e.what();
+    } catch (...) {
+        end_phase = SessionPhase::Failed;
+        error = "unknown error in the render thread";
+    }
+    std::lock_guard<std::mutex> lock(m_mutex);
+    m_phase = end_phase;
+    m_error = error;
+    m_stats.paths = m_counters.paths;
+    m_stats.rays = m_counters.rays;
+    m_stats.nan_samples = m_counters.nan_samples;
+    if (m_stats.render_seconds > 0)
+        m_stats.samples_per_second = double(m_stats.paths) / m_stats.render_seconds;
+    if (m_stats.nan_samples)
+        m_log.push_back(std::to_string(m_stats.nan_samples) + " non-finite or negative samples were dropped");
+    m_finished = true;
+    m_finished_cv.notify_all();
+}
+
+bool Session::wait(double timeout_s) {
+    std::unique_lock<std::mutex> lock(m_mutex);
+    if (!m_started) return true;
+    return m_finished_cv.wait_for(lock, std::chrono::duration<double>(std::max(0.0, timeout_s)),
+                                  [this] { return m_finished; });
+}
+
+void Session::cancel() { m_cancel.cancel(); }
+
+void Session::join() {
+    if (m_worker.joinable()) m_worker.join();
+}
+
+SessionProgress Session::progress() const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    SessionProgress p;
+    p.phase = m_phase;
+    p.samples_done = m_counters.samples_done;
+    p.samples_total = m_counters.samples_total;
+    p.fraction = p.samples_total > 0 ? double(p.samples_done) / p.samples_total : 0.0;
+    if (m_phase == SessionPhase::Done) p.fraction = 1.0;
+    if (m_started)
+        p.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start_time).count();
+    return p;
+}
+
+SessionStats Session::stats() const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    SessionStats s = m_stats;
+    if (!m_finished) {
+        s.paths = m_counters.paths;
+        s.rays = m_counters.rays;
+        s.nan_samples = m_counters.nan_samples;
+        if (m_phase == SessionPhase::Rendering) {
+            s.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_render_start).count();
+            if (s.render_seconds > 0) s.samples_per_second = double(s.paths) / s.render_seconds;
+        }
+    }
+    return s;
+}
+
+std::optional<std::string> Session::error() const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    return m_error;
+}
+
+std::vector<std::string> Session::take_log() {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    std::vector<std::string> out;
+    out.swap(m_log);
+    return out;
+}
+
+std::vector<std::pair<std::string, int>> Session::pass_names() { return {{"Combined", 4}, {"Variance", 1}}; }
+
+std::vector<float> Session::get_pass(const std::string& name, int* channels) const {
+    if (name == "Combined") {
+        *channels = 4;
+        return m_film->combined();
+    }
+    if (name == "Variance") {
+        *channels = 1;
+        return m_film->variance();
+    }
+    *channels = 0;
+    return {};
+}
+
+}  // namespace candela

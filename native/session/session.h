@@ -1,0 +1,87 @@
+// A render session: validates the scene arrays and params up front (so bad input fails at once, with a
+// message), then builds the scene and renders on a worker thread while the caller polls progress,
+// reads the partial image and may cancel. Exceptions from the worker are captured and reported through
+// error(); nothing escapes a thread.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/params.h"
+#include "film/film.h"
+#include "integrators/integrator.h"
+#include "scene/scene_arrays.h"
+
+namespace candela {
+
+enum class SessionPhase { Idle, Building, Rendering, Done, Cancelled, Failed };
+const char* phase_name(SessionPhase p);
+
+struct SessionProgress {
+    SessionPhase phase = SessionPhase::Idle;
+    int samples_done = 0, samples_total = 0;
+    double fraction = 0.0;
+    double elapsed_s = 0.0;  // since start()
+};
+
+struct SessionStats {
+    double build_seconds = 0.0, render_seconds = 0.0;
+    double samples_per_second = 0.0;  // pixel samples per second of render time
+    uint64_t paths = 0, rays = 0, nan_samples = 0;
+    SceneStats scene;
+};
+
+class Session {
+public:
+    Session(SceneArrays arrays, Params params);
+    ~Session();
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+    void start();
+    /// Waits up to timeout_s; true once the worker finished (done, cancelled or failed).
+    bool wait(double timeout_s);
+    void cancel();
+    void join();
+
+    SessionProgress progress() const;
+    SessionStats stats() const;
+    std::optional<std::string> error() const;
+    std::vector<std::string> take_log();
+
+    int width() const { return m_film->width(); }
+    int height() const { return m_film->height(); }
+    /// Pass names get_pass understands and their channel counts.
+    static std::vector<std::pair<std::string, int>> pass_names();
+    /// A pass as float32 rows bottom to top, or empty if the name is unknown.
+    std::vector<float> get_pass(const std::string& name, int* channels) const;
+
+private:
+    void run();
+
+    std::unique_ptr<SceneArrays> m_arrays;  // released once the scene is built
+    Params m_params;
+    std::unique_ptr<Film> m_film;
+    std::unique_ptr<Integrator> m_integrator;
+    CancelToken m_cancel;
+    RenderCounters m_counters;
+    int m_threads = 0;
+
+    std::thread m_worker;
+    mutable std::mutex m_mutex;
+    std::condition_variable m_finished_cv;
+    bool m_started = false, m_finished = false;
+    SessionPhase m_phase = SessionPhase::Idle;
+    std::optional<std::string> m_error;
+    std::vector<std::string> m_log;
+    SessionStats m_stats;
+    std::chrono::steady_clock::time_point m_start_time, m_render_start;
+};
+
+}  // namespace candela
