@@ -9,7 +9,7 @@
 
 #include "cli/scene_dump.h"
 #include "core/error.h"
-#include "film/exr_writer.h"
+#include "film/exr_io.h"
 #include "session/session.h"
 
 namespace {

@@ -6,6 +6,7 @@
 
 #include "bsdf/material.h"
 #include "core/error.h"
+#include "film/exr_io.h"
 #include "film/pixel_filter.h"
 #include "integrators/integrator.h"
 #include "lights/light.h"
@@ -124,6 +125,20 @@ PYBIND11_MODULE(_native, m) {
     m.doc() = "Candela's native renderer core";
     m.attr("ABI_VERSION") = k_abi_version;
     m.def("capabilities", &capabilities, "Integrators, samplers, filters and array column layouts");
+    m.def(
+        "read_exr",
+        [](const std::string& path) {
+            int w = 0, h = 0;
+            std::vector<float> rgba;
+            {
+                py::gil_scoped_release release;
+                rgba = read_exr_rgba(path, &w, &h);
+            }
+            py::array_t<float> out({size_t(h), size_t(w), size_t(4)});
+            std::copy(rgba.begin(), rgba.end(), out.mutable_data());
+            return out;
+        },
+        py::arg("path"), "An EXR's RGBA as float32 (height, width, 4), row 0 = bottom (Blender's order)");
 
     py::register_exception<InvalidScene>(m, "InvalidScene", PyExc_ValueError);
     py::register_exception<InvalidParameter>(m, "InvalidParameter", PyExc_ValueError);

@@ -1,8 +1,9 @@
-#include "film/exr_writer.h"
+#include "film/exr_io.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 
 #include <algorithm>
@@ -32,6 +33,32 @@ void write_exr_rgba(const std::string& path, int width, int height, const std::v
         file.writePixels(height);
     } catch (const std::exception& e) {
         throw InternalError("could not write '" + path + "': " + e.what());
+    }
+}
+
+std::vector<float> read_exr_rgba(const std::string& path, int* width, int* height) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+        std::vector<float> top_down(size_t(w) * h * 4, 0.f);
+        Imf::FrameBuffer fb;
+        const size_t xs = 4 * sizeof(float), ys = size_t(w) * xs;
+        char* base = reinterpret_cast<char*>(top_down.data()) - dw.min.x * xs - dw.min.y * ys;
+        const char* names[4] = {"R", "G", "B", "A"};
+        for (int c = 0; c < 4; ++c)
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1, c == 3 ? 1.0 : 0.0));
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        std::vector<float> out(top_down.size());
+        const size_t row = size_t(w) * 4;
+        for (int y = 0; y < h; ++y)
+            std::copy_n(top_down.data() + size_t(h - 1 - y) * row, row, out.data() + size_t(y) * row);
+        *width = w;
+        *height = h;
+        return out;
+    } catch (const std::exception& e) {
+        throw InvalidScene("could not read '" + path + "': " + e.what());
     }
 }
 

@@ -1,0 +1,137 @@
+"""candela._native seen from Python: validation errors, progress, cancel latency, GIL release, passes,
+and the CLI rendering a dump to the same image as the module."""
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from conftest import BUILD, box_scene, params, write_dump
+
+
+def render(native, arrays, prms):
+    s = native.Session(arrays, prms)
+    s.start()
+    s.join()
+    assert s.error is None
+    return s
+
+
+def test_capabilities_publish_layouts(native):
+    caps = native.capabilities()
+    assert "PATH" in [name for name, _ in caps["integrators"]]
+    assert caps["light_types"] == {"POINT": 0, "SPOT": 1, "SUN": 2, "AREA": 3}
+    assert set(caps["pixel_filters"]) == {"BOX", "GAUSSIAN", "BLACKMAN_HARRIS"}
+
+
+def test_render_gives_bottom_up_rgba(native):
+    s = render(native, box_scene(), params())
+    img = s.get_pass("Combined")
+    assert img.shape == (32 * 24, 4) and img.dtype == np.float32
+    assert np.isfinite(img).all() and img[:, :3].mean() > 0
+    assert np.all(img[:, 3] == 1.0)
+    assert s.progress()["phase"] == "done" and s.progress()["fraction"] == 1.0
+    st = s.stats()
+    assert st["paths"] == 32 * 24 * 8 and st["rays"] > st["paths"] and st["nan_samples"] == 0
+
+
+@pytest.mark.parametrize("mutate, message", [
+    (lambda a: a.update(triangles=np.array([[0, 1, 99]], np.uint32), tri_material=np.zeros(1, np.uint32),
+                        mesh_tri_start=np.array([0, 1, 1], np.uint32)), "triangles[0]"),
+    (lambda a: a["positions"].__setitem__((2, 1), np.nan), "positions[2]"),
+    (lambda a: a.pop("camera_to_world"), "camera_to_world"),
+    (lambda a: a.update(positions=np.zeros((4, 2), np.float32)), "positions"),
+])
+def test_bad_arrays_raise_value_error_naming_the_array(native, mutate, message):
+    arrays = box_scene()
+    mutate(arrays)
+    with pytest.raises(ValueError, match=message.replace("[", r"\[").replace("]", r"\]")):
+        native.Session(arrays, params())
+
+
+@pytest.mark.parametrize("bad, message", [
+    ({"width": 0}, "resolution"),
+    ({"pixel_filter": "TENT"}, "pixel_filter"),
+    ({"integrator": "NOPE"}, "integrator"),
+    ({"samples": "many"}, "samples"),
+    ({"crop_x0": 30, "crop_x1": 10}, "border"),
+])
+def test_bad_params_raise_value_error(native, bad, message):
+    with pytest.raises(ValueError, match=message):
+        native.Session(box_scene(), params(**bad))
+
+
+def test_unknown_params_are_reported(native):
+    s = native.Session(box_scene(), params(smaples=4))
+    assert any("smaples" in line for line in s.take_log())
+
+
+def test_cancel_stops_within_100_ms_and_keeps_the_partial_image(native):
+    s = native.Session(box_scene(), params(width=256, height=256, samples=100000, max_bounces=12))
+    s.start()
+    while s.progress()["samples_done"] < 1:
+        time.sleep(0.01)
+    t0 = time.perf_counter()
+    s.cancel()
+    assert s.wait(2.0)
+    latency = time.perf_counter() - t0
+    assert latency < 0.1, f"cancel took {latency * 1000:.0f} ms"
+    assert s.progress()["phase"] == "cancelled"
+    img = s.get_pass("Combined")
+    assert img[:, :3].mean() > 0  # the partial image survives
+
+
+def test_wait_releases_the_gil(native):
+    s = native.Session(box_scene(), params(width=128, height=128, samples=20000))
+    ticks = []
+    stop = threading.Event()
+
+    def ticker():
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.005)
+
+    t = threading.Thread(target=ticker)
+    t.start()
+    s.start()
+    s.wait(0.3)
+    stop.set()
+    t.join()
+    s.cancel()
+    s.join()
+    assert len(ticks) > 20  # Python ran while the render thread worked and wait() blocked
+
+
+def test_same_seed_same_image_and_seed_changes_it(native):
+    a = render(native, box_scene(), params()).get_pass("Combined")
+    b = render(native, box_scene(), params()).get_pass("Combined")
+    c = render(native, box_scene(), params(seed=2)).get_pass("Combined")
+    assert np.array_equal(a, b)
+    assert not np.array_equal(a, c)
+
+
+def test_border_renders_the_window_of_the_full_frame(native):
+    full = render(native, box_scene(), params()).get_pass("Combined").reshape(24, 32, 4)
+    s = render(native, box_scene(), params(crop_x0=8, crop_x1=20, crop_y0=4, crop_y1=16))
+    part = s.get_pass("Combined").reshape(12, 12, 4)
+    assert (s.width, s.height) == (12, 12)
+    assert np.array_equal(part, full[4:16, 8:20])  # same pixels, same samples
+
+
+def test_cli_renders_a_dump_to_the_same_image(native, tmp_path):
+    arrays, prms = box_scene(), params(threads=1)
+    write_dump(tmp_path / "dump", arrays, prms)
+    out = tmp_path / "out.exr"
+    proc = subprocess.run([str(BUILD / "bin" / "candela"), str(tmp_path / "dump"), "-o", str(out), "--threads", "2"],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    assert "samples/s" in proc.stdout
+    from_cli = native.read_exr(str(out))
+    from_module = render(native, arrays, prms).get_pass("Combined").reshape(24, 32, 4)
+    assert np.array_equal(from_cli, from_module)  # two threads in the CLI, one in the module
+
+
+def test_cli_reports_bad_dumps(tmp_path):
+    proc = subprocess.run([str(BUILD / "bin" / "candela"), str(tmp_path / "missing")], capture_output=True, text=True)
+    assert proc.returncode == 1 and "not a directory" in proc.stderr
