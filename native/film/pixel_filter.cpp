@@ -1,9 +1,11 @@
 #include "film/pixel_filter.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
 #include "core/math.h"
+#include "sampling/distribution_1d.h"
 
 namespace candela {
 
@@ -21,7 +23,19 @@ PixelFilter::PixelFilter(const std::string& name, float width) : m_name(name), m
     constexpr int k_bins = 1024;
     std::vector<float> f(k_bins);
     for (int i = 0; i < k_bins; ++i) f[i] = evaluate((float(i) + 0.5f) / k_bins * width - 0.5f * width);
-    m_table = Distribution1D(std::move(f));
+    const Distribution1D table(std::move(f));
+    m_inverse_cdf.resize(k_inverse_size + 1);
+    for (int i = 0; i <= k_inverse_size; ++i) {
+        const float u = std::min(float(i) / k_inverse_size, k_one_minus_epsilon);
+        m_inverse_cdf[i] = (table.sample_continuous(u) - 0.5f) * width;
+    }
+    m_inverse_cdf[k_inverse_size] = 0.5f * width;
+}
+
+float PixelFilter::sample_1d(float u) const {
+    const float pos = u * k_inverse_size;
+    const int i = std::min(static_cast<int>(pos), k_inverse_size - 1);
+    return lerp(pos - float(i), m_inverse_cdf[i], m_inverse_cdf[i + 1]);
 }
 
 float PixelFilter::evaluate(float x) const {
@@ -40,7 +54,7 @@ float PixelFilter::evaluate(float x) const {
 
 Vec2 PixelFilter::sample(Vec2 u) const {
     if (m_name == "BOX") return {(u.x - 0.5f) * m_width, (u.y - 0.5f) * m_width};
-    return {(m_table.sample_continuous(u.x) - 0.5f) * m_width, (m_table.sample_continuous(u.y) - 0.5f) * m_width};
+    return {sample_1d(u.x), sample_1d(u.y)};
 }
 
 }  // namespace candela

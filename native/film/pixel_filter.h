@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "core/vec.h"
-#include "sampling/distribution_1d.h"
 
 namespace candela {
 
@@ -29,7 +28,11 @@ public:
 private:
     std::string m_name;
     float m_width;
-    Distribution1D m_table;  // profile tabulated over [−width/2, width/2]
+    /// Inverse CDF of the profile over [−width/2, width/2] at k_inverse_size + 1 evenly spaced u, so a
+    /// sample is one table lookup with linear interpolation instead of a binary search.
+    static constexpr int k_inverse_size = 4096;
+    std::vector<float> m_inverse_cdf;
+    float sample_1d(float u) const;
 };
 
 }  // namespace candela

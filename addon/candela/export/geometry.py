@@ -1,0 +1,67 @@
+"""Mesh instances → the shared-mesh part of the schema (positions … instance_transform).
+
+Meshes are deduplicated within one export by the evaluated data pointer plus the object's material slots, so 1,000
+linked duplicates or particle instances become one mesh and 1,000 instances. The pointer is only meaningful during
+this one depsgraph walk: never keep it.
+"""
+
+import numpy as np
+
+from .mesh import read_mesh
+
+
+class GeometryTable:
+    def __init__(self, materials):
+        self.materials = materials
+        self.meshes = []            # (MeshData, tri_material uint32)
+        self._by_key = {}           # dedup key → mesh index, or -1 for objects without faces
+        self.instance_mesh = []
+        self.transforms = []
+
+    def _key(self, ob, slots):
+        # Modified objects get their own evaluated mesh, so their pointer is distinct; linked duplicates share one.
+        # Non-mesh geometry (curves, text, metaballs) is converted per evaluated object.
+        data_ptr = ob.data.as_pointer() if ob.type == 'MESH' and ob.data is not None else ob.as_pointer()
+        return data_ptr, tuple(m.as_pointer() if m is not None else 0 for m in slots)
+
+    def add(self, ob, matrix):
+        """Add one instance of the evaluated object `ob` with object → world `matrix` ((4, 4) float32)."""
+        slots = tuple(slot.material for slot in ob.material_slots)
+        key = self._key(ob, slots)
+        index = self._by_key.get(key)
+        if index is None:
+            index = self._by_key[key] = self._add_mesh(ob, slots)
+        if index >= 0:
+            self.instance_mesh.append(index)
+            self.transforms.append(matrix)
+
+    def _add_mesh(self, ob, slots):
+        data = read_mesh(ob)
+        if data is None:
+            return -1
+        rows = np.array([self.materials.row_of(m) for m in slots] or [self.materials.row_of(None)], np.uint32)
+        # Out-of-range indices (slots removed after assignment) clamp to the last slot, as Blender draws them.
+        tri_material = rows[np.clip(data.material_index, 0, len(rows) - 1)]
+        self.meshes.append((data, tri_material))
+        return len(self.meshes) - 1
+
+    @property
+    def triangle_count(self):
+        return sum(len(d.triangles) for d, _ in self.meshes)
+
+    def arrays(self):
+        datas = [d for d, _ in self.meshes]
+        vertex_counts = np.array([len(d.positions) for d in datas], np.int64)
+        tri_counts = np.array([len(d.triangles) for d in datas], np.int64)
+        vertex_base = np.concatenate([[0], np.cumsum(vertex_counts)[:-1]]).astype(np.uint32)
+        triangles = np.concatenate([d.triangles + vertex_base[i] for i, d in enumerate(datas)])
+        return {
+            "positions": np.ascontiguousarray(np.concatenate([d.positions for d in datas]), np.float32),
+            "triangles": np.ascontiguousarray(triangles, np.uint32),
+            "normals": np.ascontiguousarray(np.concatenate([d.normals for d in datas]), np.float32),
+            "tri_smooth": np.concatenate([d.smooth for d in datas]).astype(np.uint8),
+            "tri_material": np.concatenate([m for _, m in self.meshes]).astype(np.uint32),
+            "mesh_tri_start": np.concatenate([[0], np.cumsum(tri_counts)]).astype(np.uint32),
+            "instance_mesh": np.array(self.instance_mesh, np.uint32),
+            "instance_transform": np.array(self.transforms, np.float32).reshape(-1, 4, 4),
+        }

@@ -1,0 +1,79 @@
+"""THE mapping from Blender settings to the native params dict (docs/architecture.md, "Params").
+
+Inputs: `scene.candela` (properties.py), render resolution / percentage / border / pixel aspect / threads, the
+camera's data, and command-line overrides. Nothing else builds params.
+"""
+
+from . import cmdline
+
+
+def frame_size(render):
+    """Full frame in pixels with the resolution percentage applied (Blender's integer arithmetic)."""
+    return (render.resolution_x * render.resolution_percentage // 100,
+            render.resolution_y * render.resolution_percentage // 100)
+
+
+def crop_window(render):
+    """(x0, y0, x1, y1) border window in pixels, y from the bottom, x1/y1 exclusive; the full frame without border."""
+    width, height = frame_size(render)
+    if not render.use_border:
+        return 0, 0, width, height
+    x0, x1 = int(render.border_min_x * width), int(render.border_max_x * width)
+    y0, y1 = int(render.border_min_y * height), int(render.border_max_y * height)
+    if x1 <= x0 or y1 <= y0:
+        raise ValueError(f"the render border is empty ({x1 - x0}x{y1 - y0} pixels)")
+    return x0, y0, x1, y1
+
+
+def result_size(render):
+    """Size of the RenderResult Blender expects from the engine: the border window (blender-conventions §1.7)."""
+    x0, y0, x1, y1 = crop_window(render)
+    return x1 - x0, y1 - y0
+
+
+def camera_params(camera_data):
+    cam = camera_data
+    return {
+        # PANO is not supported yet: render it as a perspective camera rather than failing the frame.
+        "camera_type": "ORTHO" if cam.type == 'ORTHO' else "PERSP",
+        "sensor_fit": cam.sensor_fit,
+        "sensor_width": float(cam.sensor_width),
+        "sensor_height": float(cam.sensor_height),
+        "lens": float(cam.lens),
+        "ortho_scale": float(cam.ortho_scale),
+        "shift_x": float(cam.shift_x),
+        "shift_y": float(cam.shift_y),
+        "clip_start": float(cam.clip_start),
+        "clip_end": float(cam.clip_end),
+    }
+
+
+def to_native_params(scene, camera_data, argv=None):
+    """The params dict for `_native.Session` (argv: for tests; default sys.argv)."""
+    settings = scene.candela
+    render = scene.render
+    width, height = frame_size(render)
+    x0, y0, x1, y1 = crop_window(render)
+    params = {
+        "integrator": settings.integrator,
+        "samples": settings.samples,
+        "max_bounces": settings.max_bounces,
+        "rr_start_bounce": settings.rr_start_bounce,
+        "seed": settings.seed,
+        "pixel_filter": settings.pixel_filter,
+        "filter_width": float(settings.filter_width),
+        # render.threads honours `-t N` and the Fixed/Auto-detect setting.
+        "threads": int(render.threads),
+        "width": width, "height": height,
+        "crop_x0": x0, "crop_y0": y0, "crop_x1": x1, "crop_y1": y1,
+        "pixel_aspect_x": float(render.pixel_aspect_x),
+        "pixel_aspect_y": float(render.pixel_aspect_y),
+        # Combined alpha 0 where the background is seen directly (premultiplied RGBA), like Cycles.
+        "film_transparent": bool(render.film_transparent),
+    }
+    params.update(camera_params(camera_data))
+    params.update(cmdline.overrides(argv))
+    if settings.use_animated_seed:
+        # Deterministic per frame on every farm worker (never wall-clock based).
+        params["seed"] = params["seed"] + scene.frame_current
+    return params

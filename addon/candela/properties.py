@@ -1,0 +1,56 @@
+"""Candela's scene settings (`scene.candela`). Names equal the native params keys."""
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+
+from . import schema
+
+# Stable enum numbers: saved .blend files store the number, so never renumber.
+PIXEL_FILTERS = [
+    ("BOX", "Box", "Box filter: every sample counts fully inside one pixel", 0),
+    ("GAUSSIAN", "Gaussian", "Gaussian filter", 1),
+    ("BLACKMAN_HARRIS", "Blackman-Harris", "Blackman-Harris filter, Cycles' default", 2),
+]
+INTEGRATOR_NUMBERS = {"PATH": 0, "BDPT": 1, "MLT": 2, "PHOTON": 3, "IRRADIANCE_CACHE": 4}
+INTEGRATOR_LABELS = {"PATH": "Path Tracing", "BDPT": "Bidirectional", "MLT": "Metropolis",
+                     "PHOTON": "Photon Mapping", "IRRADIANCE_CACHE": "Irradiance Cache"}
+
+
+def integrator_items():
+    """Enum items from the native registry, so the UI never offers an integrator the build lacks."""
+    items = []
+    for i, (name, description) in enumerate(schema.integrators()):
+        label = INTEGRATOR_LABELS.get(name, name.replace("_", " ").title())
+        items.append((name, label, description or f"Render with the {label} integrator",
+                      INTEGRATOR_NUMBERS.get(name, 100 + i)))
+    return items
+
+
+class CandelaRenderSettings(bpy.types.PropertyGroup):
+    samples: IntProperty(name="Samples", description="Samples per pixel", default=64, min=1, soft_max=4096)
+    max_bounces: IntProperty(name="Max Bounces", description="Maximum path length; 0 = direct light only",
+                             default=12, min=0, max=1024)
+    rr_start_bounce: IntProperty(name="Russian Roulette From", description="Russian roulette from this bounce on",
+                                 default=3, min=0, max=1024)
+    seed: IntProperty(name="Seed", description="The image depends only on the seed, pixel and sample index",
+                      default=0, min=0)
+    use_animated_seed: BoolProperty(name="Animated Seed", description="Add the frame number to the seed",
+                                    default=False)
+    pixel_filter: EnumProperty(name="Pixel Filter", items=PIXEL_FILTERS, default="BLACKMAN_HARRIS")
+    filter_width: FloatProperty(name="Filter Width", description="Pixel filter width in pixels", default=1.5,
+                                min=0.01, soft_max=10.0, subtype='PIXEL')
+    # integrator: added in register(), its items come from the native module loaded by then
+
+
+def register():
+    items = integrator_items()
+    CandelaRenderSettings.__annotations__["integrator"] = EnumProperty(
+        name="Integrator", description="Light transport algorithm", items=items,
+        default="PATH" if any(i[0] == "PATH" for i in items) else items[0][0])
+    bpy.utils.register_class(CandelaRenderSettings)
+    bpy.types.Scene.candela = PointerProperty(type=CandelaRenderSettings, name="Candela Render Settings")
+
+
+def unregister():
+    del bpy.types.Scene.candela
+    bpy.utils.unregister_class(CandelaRenderSettings)

@@ -1,0 +1,160 @@
+"""One final render: export → native Session → poll loop feeding Blender's RenderResult.
+
+`drive()` only needs an object with the RenderEngine methods it calls (begin_result, update_result, end_result,
+test_break, update_progress, update_stats, report), so tests drive it with a fake engine.
+"""
+
+import time
+
+from . import native
+from .export import Warnings, export_scene, render_camera
+from .params import result_size, to_native_params
+
+POLL_S = 0.1                 # wait() timeout: test_break() is polled at ~10 Hz, cancel reacts well under 1 s
+STATUS_INTERVAL_S = 1.0      # update_stats prints one line per call in -b: at most 1 Hz
+DISPLAY_FIRST_S = 0.5        # first progressive refresh; then the interval doubles ...
+DISPLAY_CAP_S = 4.0          # ... up to this in the UI
+DISPLAY_CAP_BACKGROUND_S = 30.0   # nobody watches in -b: copying the image is wasted work
+
+
+class Backoff:
+    """`due(now)` is True at most once per interval; the interval grows by `factor` up to `cap`."""
+
+    def __init__(self, first, factor, cap, now):
+        self.interval, self.factor, self.cap = first, factor, cap
+        self.next = now + first
+
+    def due(self, now):
+        if now < self.next:
+            return False
+        self.interval = min(self.interval * self.factor, self.cap)
+        self.next = now + self.interval
+        return True
+
+
+def format_duration(seconds):
+    seconds = max(0, int(round(seconds)))
+    h, rem = divmod(seconds, 3600)
+    m, s = divmod(rem, 60)
+    return f"{h}:{m:02d}:{s:02d}" if h else f"{m:02d}:{s:02d}"
+
+
+def status_line(integrator, progress):
+    """"Path | Sample 37/256 | Elapsed 00:12 | Remaining 00:41" (or the phase while building)."""
+    name = integrator.replace("_", " ").title() if integrator != "BDPT" else "BDPT"
+    elapsed = float(progress.get("elapsed_s", 0.0))
+    phase = progress.get("phase", "rendering")
+    if phase == "building":
+        return f"{name} | Building scene | Elapsed {format_duration(elapsed)}"
+    done, total = int(progress.get("samples_done", 0)), int(progress.get("samples_total", 0))
+    fraction = float(progress.get("fraction", 0.0))
+    line = f"{name} | Sample {done}/{total} | Elapsed {format_duration(elapsed)}"
+    if fraction > 0.0:
+        line += f" | Remaining {format_duration(elapsed * (1.0 - fraction) / fraction)}"
+    return line
+
+
+def _combined_pass(result):
+    for render_pass in result.layers[0].passes:
+        if render_pass.name == "Combined":
+            return render_pass
+    return None
+
+
+def _copy_combined(session, render_pass, width, height):
+    """Copy the native Combined pass into the result; False while the film does not exist yet."""
+    if render_pass is None:
+        return False
+    buf = session.get_pass("Combined")
+    if buf is None:
+        return False
+    if buf.shape != (width * height, 4):
+        raise RuntimeError(f"native Combined pass has shape {buf.shape}, expected ({width * height}, 4)")
+    render_pass.rect.foreach_set(buf)   # must be a 2-D (N, 4) array in Blender 3.4 (a flat one crashes)
+    return True
+
+
+def _forward_log(engine, session):
+    for entry in session.take_log():
+        message = entry[-1] if isinstance(entry, (tuple, list)) else entry
+        engine.report({'WARNING'}, f"Candela: {message}")
+
+
+def drive(engine, session, layer="", integrator="PATH", background=False, clock=time.monotonic, out=print):
+    """Poll a started session until it finishes or `engine.test_break()`; always ends the result.
+
+    Returns the final `session.progress()`; raises RuntimeError if the native render failed (after the partial
+    image was handed to Blender).
+    """
+    width, height = session.width, session.height
+    result = engine.begin_result(0, 0, width, height, layer=layer)
+    joined = False
+    try:
+        render_pass = _combined_pass(result)
+        start = clock()
+        display = Backoff(DISPLAY_FIRST_S, 2.0, DISPLAY_CAP_BACKGROUND_S if background else DISPLAY_CAP_S, start)
+        status = Backoff(STATUS_INTERVAL_S, 1.0, STATUS_INTERVAL_S, start)
+        while not session.wait(POLL_S):
+            if engine.test_break():
+                session.cancel()
+                break
+            now = clock()
+            progress = session.progress()
+            engine.update_progress(float(progress.get("fraction", 0.0)))
+            if status.due(now):
+                engine.update_stats("", status_line(integrator, progress))
+                _forward_log(engine, session)
+            if display.due(now) and _copy_combined(session, render_pass, width, height):
+                engine.update_result(result)
+        session.join()
+        joined = True
+        # Final (or, after a cancel, partial) image: end_result below hands it to Blender.
+        _copy_combined(session, render_pass, width, height)
+    finally:
+        if not joined:          # an exception in the loop: stop the workers before the result goes away
+            session.cancel()
+            session.join()
+        engine.end_result(result)
+
+    progress = session.progress()
+    _forward_log(engine, session)
+    if session.error:
+        raise RuntimeError(session.error)
+    engine.update_progress(1.0)
+    engine.update_stats("", status_line(integrator, progress))
+    out(summary_line(session, progress, width, height))
+    return progress
+
+
+def summary_line(session, progress, width, height):
+    stats = session.stats()
+    seconds = float(stats.get("render_seconds", progress.get("elapsed_s", 0.0)))
+    done, total = int(progress.get("samples_done", 0)), int(progress.get("samples_total", 0))
+    rate = float(stats.get("samples_per_second", 0.0))
+    what = f"{done} samples" if progress.get("phase") != "cancelled" else f"{done} of {total} samples (cancelled)"
+    return f"Candela: rendered {width}x{height}, {what} in {seconds:.2f} s ({rate:.1f} samples/s)"
+
+
+def render_frame(engine, depsgraph, background=False):
+    """The whole final render of one view layer (engine.render forwards here)."""
+    nat = native.require()
+    scene = depsgraph.scene
+    layer = depsgraph.view_layer.name
+    camera = render_camera(scene, engine.camera_override)
+    width, height = result_size(scene.render)
+    warnings = Warnings()
+    arrays = export_scene(depsgraph, camera, test_break=engine.test_break,
+                          status=lambda text: engine.update_stats("", text), warnings=warnings)
+    for message in warnings.messages:
+        engine.report({'WARNING'}, message)
+    if arrays is None:
+        # Cancelled while exporting: still hand Blender a (blank) result, never none at all.
+        engine.end_result(engine.begin_result(0, 0, width, height, layer=layer))
+        return None
+    params = to_native_params(scene, camera.original.evaluated_get(depsgraph).data)
+    engine.update_stats("", "Building scene")
+    session = nat.Session(arrays, params)
+    if (session.width, session.height) != (width, height):
+        raise RuntimeError(f"native film is {session.width}x{session.height}, Blender expects {width}x{height}")
+    session.start()
+    return drive(engine, session, layer=layer, integrator=params["integrator"], background=background)

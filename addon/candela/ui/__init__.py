@@ -1,0 +1,19 @@
+"""Candela's UI: own panels plus Blender's reusable ones."""
+
+import bpy
+
+from . import compat, light, render, surfaces
+
+classes = render.classes + light.classes + surfaces.classes
+
+
+def register():
+    for cls in classes:
+        bpy.utils.register_class(cls)
+    compat.register()
+
+
+def unregister():
+    compat.unregister()
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

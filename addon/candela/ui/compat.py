@@ -1,0 +1,47 @@
+"""Reuse Blender's engine-agnostic panels by adding 'CANDELA' to their COMPAT_ENGINES (Cycles' get_panels()).
+
+Every panel declaring 'BLENDER_RENDER' compatibility qualifies, minus EXCLUDE (replaced by Candela's own panels or
+meaningless for Candela), plus EXTRA (EEVEE panels that are right for Candela too).
+"""
+
+import bpy
+
+ENGINE = "CANDELA"
+EXCLUDE = {
+    "DATA_PT_light",            # type selector only: CANDELA_LIGHT_PT_light draws type + colour + power
+    "DATA_PT_preview",          # no material/light previews yet (bl_use_preview = False)
+    "RENDER_PT_freestyle",      # no Freestyle support
+    "MATERIAL_PT_freestyle_line",
+}
+EXCLUDE_PREFIXES = ("VIEWLAYER_PT_freestyle", "DATA_PT_lightprobe", "DATA_PT_context_lightprobe")
+EXTRA = ("EEVEE_MATERIAL_PT_context_material",)   # the material slot list
+
+_added = []   # panels we changed, so unregister undoes exactly that
+
+# Many panels inherit one COMPAT_ENGINES set object from a shared base class, so adding to it in place would also
+# enable the excluded panels sharing it. Each changed panel gets its own new set instead (in place edits by other
+# engines registered later still reach it, since they walk every panel as well).
+
+
+def _panels():
+    for name in dir(bpy.types):
+        panel = getattr(bpy.types, name, None)
+        engines = getattr(panel, "COMPAT_ENGINES", None)
+        if not isinstance(engines, set):
+            continue
+        if name in EXTRA or ("BLENDER_RENDER" in engines and name not in EXCLUDE
+                             and not name.startswith(EXCLUDE_PREFIXES)):
+            yield panel
+
+
+def register():
+    for panel in list(_panels()):
+        if ENGINE not in panel.COMPAT_ENGINES:
+            panel.COMPAT_ENGINES = panel.COMPAT_ENGINES | {ENGINE}
+            _added.append(panel)
+
+
+def unregister():
+    for panel in _added:
+        panel.COMPAT_ENGINES = panel.COMPAT_ENGINES - {ENGINE}
+    _added.clear()

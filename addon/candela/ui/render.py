@@ -1,0 +1,58 @@
+"""Render-tab panels: Sampling, Light Paths, Film."""
+
+import bpy
+
+from .base import CandelaPanel
+
+
+class CANDELA_RENDER_PT_sampling(CandelaPanel, bpy.types.Panel):
+    bl_context = "render"
+    bl_label = "Sampling"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.candela
+        col = layout.column()
+        col.prop(settings, "integrator")
+        col.prop(settings, "samples")
+        row = col.row(align=True)
+        row.prop(settings, "seed")
+        row.prop(settings, "use_animated_seed", text="", icon='TIME')
+
+
+class CANDELA_RENDER_PT_light_paths(CandelaPanel, bpy.types.Panel):
+    bl_context = "render"
+    bl_label = "Light Paths"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.candela
+        col = layout.column()
+        col.prop(settings, "max_bounces")
+        col.prop(settings, "rr_start_bounce")
+
+
+class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
+    bl_context = "render"
+    bl_label = "Film"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.candela
+        col = layout.column()
+        col.prop(settings, "pixel_filter")
+        sub = col.column()
+        sub.active = settings.pixel_filter != 'BOX'
+        sub.prop(settings, "filter_width", text="Width")
+        col.prop(context.scene.render, "film_transparent", text="Transparent")
+
+
+classes = (CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_light_paths, CANDELA_RENDER_PT_film)

@@ -1,0 +1,109 @@
+"""Cancelling: the render loop stops soon after test_break() turns True and keeps the partial image."""
+
+import time
+
+import bpy
+import numpy as np
+
+import scenes
+from candela import native, render_loop
+from candela.export import export_scene, render_camera
+from candela.params import to_native_params
+
+
+class FakeRect:
+    def __init__(self):
+        self.data = None
+
+    def foreach_set(self, buf):
+        assert buf.ndim == 2 and buf.shape[1] == 4   # Blender 3.4 crashes on flat arrays
+        self.data = np.array(buf, copy=True)
+
+
+class FakePass:
+    def __init__(self, name):
+        self.name, self.rect = name, FakeRect()
+
+
+class FakeLayer:
+    def __init__(self):
+        self.passes = [FakePass("Combined")]
+
+
+class FakeResult:
+    def __init__(self):
+        self.layers = [FakeLayer()]
+
+
+class FakeEngine:
+    """The RenderEngine methods render_loop.drive() uses; test_break() turns True `break_after` s after start."""
+
+    def __init__(self, break_after):
+        self.start = time.monotonic()
+        self.break_after = break_after
+        self.break_time = None
+        self.result = None
+        self.ended = False
+        self.reports = []
+        self.stats = []
+
+    def test_break(self):
+        if time.monotonic() - self.start >= self.break_after:
+            if self.break_time is None:
+                self.break_time = time.monotonic()
+            return True
+        return False
+
+    def begin_result(self, x, y, w, h, layer=""):
+        self.result = FakeResult()
+        return self.result
+
+    def update_result(self, result):
+        pass
+
+    def end_result(self, result, cancel=False):
+        self.ended = True
+
+    def update_progress(self, fraction):
+        pass
+
+    def update_stats(self, stats, info):
+        self.stats.append(info)
+
+    def report(self, kind, message):
+        self.reports.append((kind, message))
+
+
+def test_cancel_stops_quickly_and_keeps_partial_image():
+    scene = scenes.tiny_scene(width=64, height=48, samples=100000)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    camera = render_camera(scene)
+    arrays = export_scene(depsgraph, camera)
+    session = native.require().Session(arrays, to_native_params(scene, camera.data))
+    session.start()
+    engine = FakeEngine(break_after=0.3)
+    lines = []
+    render_loop.drive(engine, session, integrator="PATH", out=lines.append)
+    returned = time.monotonic()
+    assert engine.break_time is not None, "the render finished before the break: raise the sample count"
+    latency = returned - engine.break_time
+    print(f"cancel latency {latency * 1000:.0f} ms")
+    assert latency < 1.0, latency
+    assert engine.ended
+    assert session.progress()["phase"] == "cancelled"
+    partial = engine.result.layers[0].passes[0].rect.data
+    assert partial is not None and partial.shape == (64 * 48, 4)
+    assert np.all(np.isfinite(partial)) and partial[:, :3].max() > 0.0
+    assert lines and lines[0].startswith("Candela: rendered 64x48")
+
+
+def test_status_line_format():
+    line = render_loop.status_line("PATH", {"phase": "rendering", "samples_done": 37, "samples_total": 256,
+                                            "fraction": 0.25, "elapsed_s": 12.0})
+    assert line == "Path | Sample 37/256 | Elapsed 00:12 | Remaining 00:36"
+
+
+def test_backoff_grows_and_caps():
+    b = render_loop.Backoff(0.5, 2.0, 4.0, now=0.0)
+    due = [t / 10 for t in range(0, 200) if b.due(t / 10)]
+    assert due[:4] == [0.5, 1.5, 3.5, 7.5] and all(b - a <= 4.0 + 1e-9 for a, b in zip(due, due[1:]))
