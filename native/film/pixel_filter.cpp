@@ -14,7 +14,8 @@ const std::vector<std::string>& PixelFilter::names() {
     return n;
 }
 
-PixelFilter::PixelFilter(const std::string& name, float width) : m_name(name), m_width(width) {
+PixelFilter::PixelFilter(const std::string& name, float width)
+    : m_name(name), m_width(width), m_support(width * (name == "GAUSSIAN" ? 3.f : name == "BLACKMAN_HARRIS" ? 2.f : 1.f)) {
     bool known = false;
     for (const auto& n : names()) known |= n == name;
     if (!known) throw InvalidParameter("unknown pixel_filter '" + name + "' (BOX, GAUSSIAN, BLACKMAN_HARRIS)");
@@ -22,14 +23,14 @@ PixelFilter::PixelFilter(const std::string& name, float width) : m_name(name), m
     // 1024 bins resolve the profile far below the noise of any practical sample count.
     constexpr int k_bins = 1024;
     std::vector<float> f(k_bins);
-    for (int i = 0; i < k_bins; ++i) f[i] = evaluate((float(i) + 0.5f) / k_bins * width - 0.5f * width);
+    for (int i = 0; i < k_bins; ++i) f[i] = evaluate((float(i) + 0.5f) / k_bins * m_support - 0.5f * m_support);
     const Distribution1D table(std::move(f));
     m_inverse_cdf.resize(k_inverse_size + 1);
     for (int i = 0; i <= k_inverse_size; ++i) {
         const float u = std::min(float(i) / k_inverse_size, k_one_minus_epsilon);
-        m_inverse_cdf[i] = (table.sample_continuous(u) - 0.5f) * width;
+        m_inverse_cdf[i] = (table.sample_continuous(u) - 0.5f) * m_support;
     }
-    m_inverse_cdf[k_inverse_size] = 0.5f * width;
+    m_inverse_cdf[k_inverse_size] = 0.5f * m_support;
 }
 
 float PixelFilter::sample_1d(float u) const {
@@ -39,21 +40,21 @@ float PixelFilter::sample_1d(float u) const {
 }
 
 float PixelFilter::evaluate(float x) const {
-    const float half = 0.5f * m_width;
+    const float half = 0.5f * m_support;
     if (std::fabs(x) > half) return 0.f;
     if (m_name == "BOX") return 1.f;
     if (m_name == "GAUSSIAN") {
-        // Cycles: exp(−2 v²) with v = x·6/width: the support holds ±3 standard deviations.
-        const float v = x * 6.f / m_width;
+        // Cycles: exp(−2 v²) with v = x·6/support: σ = support/12 = width/4.
+        const float v = x * 6.f / m_support;
         return std::exp(-2.f * v * v);
     }
     // Blackman–Harris window over the support (Cycles filter_func_blackman_harris).
-    const float v = 2.f * k_pi * (x / m_width + 0.5f);
+    const float v = 2.f * k_pi * (x / m_support + 0.5f);
     return 0.35875f - 0.48829f * std::cos(v) + 0.14128f * std::cos(2.f * v) - 0.01168f * std::cos(3.f * v);
 }
 
 Vec2 PixelFilter::sample(Vec2 u) const {
-    if (m_name == "BOX") return {(u.x - 0.5f) * m_width, (u.y - 0.5f) * m_width};
+    if (m_name == "BOX") return {(u.x - 0.5f) * m_support, (u.y - 0.5f) * m_support};
     return {sample_1d(u.x), sample_1d(u.y)};
 }
 

@@ -1,7 +1,9 @@
 // Pixel reconstruction filters applied by filter importance sampling (Ernst et al. 2006, "Filter
 // Importance Sampling"): each camera sample's offset from the pixel centre is drawn from the filter
 // itself, so every sample carries weight 1 and stays in its own pixel. Filters are separable, as in
-// Cycles (one 1-D table sampled per axis), with Cycles' definitions of width: the total support in pixels.
+// Cycles (one 1-D table sampled per axis), with Cycles' meaning of the width (intern/cycles/scene/film.cpp,
+// filter_table): the user's width is the box's total support, while the Gaussian's support is 3× and the
+// Blackman–Harris window's 2× the width (a Blackman–Harris of width 1.5 reaches 1.5 pixels each way).
 #pragma once
 
 #include <string>
@@ -13,21 +15,24 @@ namespace candela {
 
 class PixelFilter {
 public:
-    /// name: BOX, GAUSSIAN or BLACKMAN_HARRIS; width: total support in pixels (> 0).
+    /// name: BOX, GAUSSIAN or BLACKMAN_HARRIS; width: Blender's filter width in pixels (> 0).
     PixelFilter(const std::string& name, float width);
 
     /// Offset from the pixel centre for a canonical sample u ∈ [0, 1)².
     Vec2 sample(Vec2 u) const;
 
-    /// The 1-D filter profile at offset x (not normalised; 0 outside ±width/2).
+    /// The 1-D filter profile at offset x (not normalised; 0 outside ±support()/2).
     float evaluate(float x) const;
     float width() const { return m_width; }
+    /// Total extent of the profile in pixels.
+    float support() const { return m_support; }
 
     static const std::vector<std::string>& names();
 
 private:
     std::string m_name;
     float m_width;
+    float m_support;
     /// Inverse CDF of the profile over [−width/2, width/2] at k_inverse_size + 1 evenly spaced u, so a
     /// sample is one table lookup with linear interpolation instead of a binary search.
     static constexpr int k_inverse_size = 4096;

@@ -88,7 +88,9 @@ def test_cancel_stops_quickly_and_keeps_partial_image():
     assert engine.break_time is not None, "the render finished before the break: raise the sample count"
     latency = returned - engine.break_time
     print(f"cancel latency {latency * 1000:.0f} ms")
-    assert latency < 1.0, latency
+    # Esc is seen within one poll interval; from then the workers must stop and the partial image be handed
+    # back. Together that must stay under the 100 ms the issue promises.
+    assert latency + render_loop.POLL_S < 0.1, f"{latency * 1000:.0f} ms after the break was seen"
     assert engine.ended
     assert session.progress()["phase"] == "cancelled"
     partial = engine.result.layers[0].passes[0].rect.data

@@ -17,7 +17,7 @@ void expect_filter_moments(const std::string& name, float width) {
     double norm = 0, second = 0;
     const int q = 20000;
     for (int i = 0; i < q; ++i) {
-        const double x = (i + 0.5) / q * width - 0.5 * width;
+        const double x = (i + 0.5) / q * f.support() - 0.5 * f.support();
         norm += f.evaluate(float(x));
         second += x * x * f.evaluate(float(x));
     }
@@ -27,7 +27,7 @@ void expect_filter_moments(const std::string& name, float width) {
     double sum = 0, sum_sq = 0;
     for (int i = 0; i < n; ++i) {
         const Vec2 o = f.sample({rng.next_float(), rng.next_float()});
-        ASSERT_LE(std::fabs(o.x), 0.5f * width + 1e-5f);
+        ASSERT_LE(std::fabs(o.x), 0.5f * f.support() + 1e-5f);
         sum += o.x;
         sum_sq += double(o.x) * o.x;
     }
@@ -40,6 +40,16 @@ void expect_filter_moments(const std::string& name, float width) {
 TEST(PixelFilter, BoxMoments) { expect_filter_moments("BOX", 1.f); }
 TEST(PixelFilter, GaussianMoments) { expect_filter_moments("GAUSSIAN", 1.5f); }
 TEST(PixelFilter, BlackmanHarrisMoments) { expect_filter_moments("BLACKMAN_HARRIS", 1.5f); }
+// Cycles' widths: the Gaussian spans 3x and Blackman–Harris 2x the user's width (film.cpp filter_table).
+TEST(PixelFilter, SupportFollowsCyclesWidthConvention) {
+    EXPECT_FLOAT_EQ(PixelFilter("BOX", 1.5f).support(), 1.5f);
+    EXPECT_FLOAT_EQ(PixelFilter("GAUSSIAN", 1.5f).support(), 4.5f);
+    EXPECT_FLOAT_EQ(PixelFilter("BLACKMAN_HARRIS", 1.5f).support(), 3.f);
+    // exp(−2(6x/support)²) = exp(−x²/2σ²) with σ = width/4 in Cycles' parametrisation.
+    const PixelFilter g("GAUSSIAN", 1.5f);
+    EXPECT_NEAR(g.evaluate(0.375f) / g.evaluate(0.f), std::exp(-0.5), 1e-6);
+}
+
 TEST(PixelFilter, RejectsUnknownAndBadWidth) {
     EXPECT_THROW(PixelFilter("TENT", 1.f), InvalidParameter);
     EXPECT_THROW(PixelFilter("BOX", 0.f), InvalidParameter);

@@ -1,0 +1,388 @@
+#!/usr/bin/env python3
+"""`make bench`: Candela vs Cycles on the example Cornell box, plus the raw Embree ray rate.
+
+    /usr/bin/python3.11 bench/bench.py --build build [--size 256 --samples 64 --threads N --repeats 2]
+
+Same scene, resolution, bounces (12), sample counts, CPU thread count, pixel filter; no denoising, adaptive
+sampling or clamping.  Each engine renders at S and FACTOR*S samples inside ONE Blender process
+(bench/render_timed.py), each render timed with time.perf_counter(); the best of --repeats per count is kept and
+
+    samples/s = W * H * (S2 - S1) / (t2 - t1)
+
+so per-render setup (export, BVH build, kernel load, EXR write) cancels out.  Targets: Candela/Cycles samples/s
+>= 2.0; mean linear RGB of the S2 images within 2 %.  The raw incoherent-ray rate comes from
+build/bin/candela_bench_rays DUMP_DIR (one JSON line {"rays_per_second": ...}) on a dump of the same scene.
+
+Prints everything, writes BUILD/bench/bench.json.  Exits non-zero only when something crashed (a render
+failed), never because a target was missed.
+"""
+
+import argparse
+import datetime
+import json
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+
+SPEED_TARGET = 2.0          # Candela samples/s over Cycles samples/s
+BRIGHTNESS_TOL = 0.02       # |mean ratio - 1|
+
+
+def parse_args():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--build", default="build", help="build directory (default: build)")
+    ap.add_argument("--size", type=int, default=256, help="square resolution (default 256)")
+    ap.add_argument("--samples", type=int, default=64, help="S, the lower sample count (default 64)")
+    ap.add_argument("--factor", type=int, default=5, help="S2 = factor * S (default 5)")
+    ap.add_argument("--threads", type=int, default=0, help="threads for both engines (default: all cores)")
+    ap.add_argument("--repeats", type=int, default=2, help="repeats per sample count, best kept (default 2)")
+    ap.add_argument("--rays", type=int, default=0, help="rays for candela_bench_rays (default: its own)")
+    ap.add_argument("--blender", default=None, help="Blender launcher (default: bin/candela-blender)")
+    ap.add_argument("--engines", default="CYCLES,CANDELA", help="engines to run (default CYCLES,CANDELA)")
+    return ap.parse_args()
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Machine facts
+# ---------------------------------------------------------------------------------------------------------------
+
+def machine_facts():
+    facts = {
+        "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
+        "hostname": platform.node(),
+        "kernel": platform.release(),
+        "logical_cpus": os.cpu_count(),
+        "usable_cpus": len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count(),
+    }
+    try:
+        facts["loadavg_at_start"] = [round(x, 2) for x in os.getloadavg()]
+    except OSError:
+        facts["loadavg_at_start"] = None
+    model, physical = None, set()
+    flags = ""
+    try:
+        phys_id = core_id = None
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                key, _, val = line.partition(":")
+                key, val = key.strip(), val.strip()
+                if key == "model name" and model is None:
+                    model = val
+                elif key == "physical id":
+                    phys_id = val
+                elif key == "core id":
+                    core_id = val
+                    physical.add((phys_id, core_id))
+                elif key == "flags" and not flags:
+                    flags = val
+    except OSError:
+        pass
+    facts["cpu_model"] = model or platform.processor() or "unknown"
+    facts["physical_cores"] = len(physical) or None
+    facts["simd"] = [f for f in ("sse4_2", "avx", "avx2", "avx512f", "neon") if f in flags.split()]
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemTotal:"):
+                    facts["mem_gib"] = round(int(line.split()[1]) / 1024 / 1024, 1)
+    except OSError:
+        pass
+    try:
+        facts["git_commit"] = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
+                                             capture_output=True, text=True, timeout=10).stdout.strip() or None
+    except (OSError, subprocess.SubprocessError):
+        facts["git_commit"] = None
+    return facts
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Running Blender
+# ---------------------------------------------------------------------------------------------------------------
+
+def clean_env():
+    env = dict(os.environ)
+    for k in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV"):
+        env.pop(k, None)
+    return env
+
+
+def run(cmd, log_path, timeout=3600):
+    """Run cmd, tee its output into log_path; return (returncode, output)."""
+    print("  $ " + " ".join(cmd), flush=True)
+    t0 = time.perf_counter()
+    try:
+        proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              env=clean_env(), timeout=timeout, cwd=ROOT)
+        rc, out = proc.returncode, proc.stdout
+    except subprocess.TimeoutExpired as exc:
+        rc, out = -1, (exc.stdout or "") if isinstance(exc.stdout, str) else ""
+        out += f"\n[bench] timed out after {timeout} s\n"
+    except OSError as exc:
+        rc, out = -1, f"[bench] could not run: {exc}\n"
+    with open(log_path, "w") as f:
+        f.write(out)
+    print(f"    (exit {rc}, {time.perf_counter() - t0:.1f} s, log {shown(log_path)})", flush=True)
+    return rc, out
+
+
+def shown(path):
+    rel = os.path.relpath(path, ROOT)
+    return path if rel.startswith("..") else rel
+
+
+def tail(text, n=15):
+    return "\n".join("    | " + l for l in text.rstrip().splitlines()[-n:])
+
+
+def find_json(out, prefix="RENDER_TIMED_JSON "):
+    for line in reversed(out.splitlines()):
+        if line.startswith(prefix):
+            return json.loads(line[len(prefix):])
+    return None
+
+
+def blender_cmd(blender, script, args):
+    return [blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script, "--"] + args
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Metrics
+# ---------------------------------------------------------------------------------------------------------------
+
+def rate(res, s1, s2):
+    """samples/s from the best times at s1 and s2 (setup cancels); None if not measurable."""
+    if not res:
+        return None
+    t1, t2 = res["best_seconds"].get(str(s1)), res["best_seconds"].get(str(s2))
+    if t1 is None or t2 is None or t2 <= t1:
+        return None
+    return res["width"] * res["height"] * (s2 - s1) / (t2 - t1)
+
+
+def pt_ray_rate(res, s1, s2):
+    """Rays per second of Candela's path tracer: from the ray counts and the same timing differences."""
+    if not res or "rays" not in res:
+        return None, None
+    rays = res["rays"]
+    t1, t2 = res["best_seconds"].get(str(s1)), res["best_seconds"].get(str(s2))
+    r1, r2 = rays.get(str(s1)), rays.get(str(s2))
+    if r1 is not None and r2 is not None and t1 is not None and t2 is not None and t2 > t1 and r2 > r1:
+        return (r2 - r1) / (t2 - t1), "ray-count difference / wall-time difference (setup excluded)"
+    # Fall back to the native render time of the higher count.
+    for run_ in res.get("runs", []):
+        if run_.get("samples") == s2 and run_.get("rays") and run_.get("native_render_seconds"):
+            return run_["rays"] / run_["native_render_seconds"], "rays / native render_seconds at S2"
+    return None, None
+
+
+def fmt_rate(x):
+    if x is None:
+        return "n/a"
+    if x >= 1e6:
+        return f"{x / 1e6:.3f} M/s"
+    return f"{x / 1e3:.1f} k/s"
+
+
+def fmt(x, spec=".3f"):
+    return "n/a" if x is None else format(x, spec)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Main
+# ---------------------------------------------------------------------------------------------------------------
+
+def main():
+    a = parse_args()
+    build = os.path.abspath(os.path.join(ROOT, a.build) if not os.path.isabs(a.build) else a.build)
+    outdir = os.path.join(build, "bench")
+    os.makedirs(outdir, exist_ok=True)
+    threads = a.threads or (len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count())
+    s1, s2 = a.samples, a.samples * a.factor
+    engines = [e.strip().upper() for e in a.engines.split(",") if e.strip()]
+
+    launcher = a.blender or os.path.join(ROOT, "bin", "candela-blender")
+    addon_built = os.path.isfile(os.path.join(build, "scripts", "addons", "candela", "__init__.py"))
+    if not a.blender and not addon_built:
+        print(f"[bench] Candela add-on not built in {build}/scripts/addons/candela: running Cycles only "
+              f"with plain Blender")
+        launcher = shutil.which("blender") or "/usr/bin/blender"
+        engines = [e for e in engines if e != "CANDELA"]
+    env_scripts = os.path.join(build, "scripts")
+    if a.blender is None and addon_built:
+        os.environ["CANDELA_SCRIPTS_DIR"] = env_scripts
+
+    facts = machine_facts()
+    print("=" * 78)
+    print("Candela benchmark — Cornell box")
+    print("=" * 78)
+    print(f"date        {facts['date']}")
+    print(f"cpu         {facts['cpu_model']}  ({facts['logical_cpus']} logical, "
+          f"{facts['physical_cores'] or '?'} physical cores, simd {' '.join(facts['simd']) or '-'})")
+    print(f"host        {facts['hostname']}  kernel {facts['kernel']}  mem {facts.get('mem_gib', '?')} GiB  "
+          f"commit {facts['git_commit'] or '-'}")
+    load = facts.get("loadavg_at_start")
+    if load:
+        busy = "   WARNING: the machine is busy, timings are unreliable" if load[0] > 0.5 else ""
+        print(f"load        {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} (1/5/15 min){busy}")
+    print(f"settings    {a.size}x{a.size}, S1 = {s1} spp, S2 = {s2} spp, {threads} threads, 12 bounces, "
+          f"best of {a.repeats}, CPU, no denoising/adaptive sampling/clamping")
+    print(flush=True)
+
+    report = {"machine": facts, "settings": {"size": a.size, "s1": s1, "s2": s2, "threads": threads,
+                                             "repeats": a.repeats, "max_bounces": 12},
+              "engines": {}, "errors": []}
+    crashed = False
+
+    # 1. The scene.
+    blend = os.path.join(outdir, "cornell_box.blend")
+    print("[1] generating the Cornell box")
+    rc, out = run(blender_cmd(launcher, os.path.join(ROOT, "examples", "cornell_box.py"),
+                              [blend, "--size", str(a.size), "--samples", str(s1), "--threads", str(threads)]),
+                  os.path.join(outdir, "generate.log"))
+    if rc != 0 or not os.path.exists(blend):
+        print("[bench] could not generate the scene:\n" + tail(out))
+        report["errors"].append("scene generation failed")
+        write_report(outdir, report)
+        return 1
+
+    # 2. Each engine in its own Blender process.
+    dump_dir = os.path.join(outdir, "cornell_dump")
+    for i, engine in enumerate(engines, start=2):
+        print(f"[{i}] {engine}: {s1} and {s2} spp, {a.repeats} repeat(s)")
+        args = ["--blend", blend, "--engine", engine, "--samples", f"{s1},{s2}",
+                "--out", os.path.join(outdir, "exr"), "--threads", str(threads), "--repeats", str(a.repeats),
+                "--size", str(a.size), "--json", os.path.join(outdir, f"{engine.lower()}.json")]
+        if engine == "CANDELA":
+            shutil.rmtree(dump_dir, ignore_errors=True)
+            args += ["--dump", dump_dir]
+        rc, out = run(blender_cmd(launcher, os.path.join(HERE, "render_timed.py"), args),
+                      os.path.join(outdir, f"{engine.lower()}.log"))
+        res = find_json(out)
+        if rc != 0 or res is None:
+            print(f"[bench] {engine} failed:\n" + tail(out))
+            report["errors"].append(f"{engine} render failed (exit {rc})")
+            crashed = True
+            continue
+        report["engines"][engine] = res
+        for s in (s1, s2):
+            print(f"    {s:5d} spp: {res['best_seconds'][str(s)]:.3f} s (best), "
+                  f"mean RGB {', '.join(f'{v:.4f}' for v in res['images'][str(s)]['mean_rgb'])}")
+
+    # 3. Raw Embree rate on a dump of the same scene.
+    raw = None
+    raw_note = None
+    bin_path = os.path.join(build, "bin", "candela_bench_rays")
+    dump_ok = os.path.isfile(os.path.join(dump_dir, "params.json"))
+    cand = report["engines"].get("CANDELA")
+    if cand and cand.get("dump") and not cand["dump"].get("ok"):
+        raw_note = f"no dump ({cand['dump'].get('error', 'export_dump failed')})"
+    if not os.access(bin_path, os.X_OK):
+        raw_note = f"{shown(bin_path)} not built"
+    elif not dump_ok:
+        raw_note = raw_note or "no scene dump"
+    else:
+        print(f"[{len(engines) + 2}] raw Embree incoherent rays: candela_bench_rays")
+        cmd = [bin_path, dump_dir] + (["--rays", str(a.rays)] if a.rays else [])
+        rc, out = run(cmd, os.path.join(outdir, "bench_rays.log"))
+        rj = None
+        for line in reversed(out.splitlines()):
+            line = line.strip()
+            if line.startswith("{") and "rays_per_second" in line:
+                try:
+                    rj = json.loads(line)
+                    break
+                except ValueError:
+                    pass
+        if rc == 0 and rj and rj.get("rays_per_second"):
+            raw = float(rj["rays_per_second"])
+            report["raw_rays"] = rj
+        else:
+            raw_note = f"candela_bench_rays failed (exit {rc})"
+            print(tail(out))
+            report["errors"].append(raw_note)
+
+    # 4. Results.
+    cyc, can = report["engines"].get("CYCLES"), report["engines"].get("CANDELA")
+    cyc_rate, can_rate = rate(cyc, s1, s2), rate(can, s1, s2)
+    speed_ratio = can_rate / cyc_rate if can_rate and cyc_rate else None
+    cyc_mean = cyc["images"][str(s2)]["mean"] if cyc else None
+    can_mean = can["images"][str(s2)]["mean"] if can else None
+    bright_ratio = can_mean / cyc_mean if can_mean is not None and cyc_mean else None
+    pt_rate, pt_method = pt_ray_rate(can, s1, s2)
+    native_sps = None          # Candela's own samples/s (native render_seconds, excludes export/BVH build)
+    if can:
+        for run_ in can.get("runs", []):
+            st = run_.get("native_stats") or {}
+            if run_.get("samples") == s2 and st.get("samples_per_second"):
+                native_sps = max(native_sps or 0.0, float(st["samples_per_second"]))
+    share = pt_rate / raw if pt_rate and raw else None
+
+    def verdict(ok):
+        return "n/a" if ok is None else ("PASS" if ok else "FAIL")
+
+    speed_ok = None if speed_ratio is None else speed_ratio >= SPEED_TARGET
+    bright_ok = None if bright_ratio is None else abs(bright_ratio - 1.0) <= BRIGHTNESS_TOL
+    per_channel = None
+    if cyc and can:
+        per_channel = [c / y if y else None for c, y in zip(can["images"][str(s2)]["mean_rgb"],
+                                                            cyc["images"][str(s2)]["mean_rgb"])]
+
+    report["results"] = {
+        "cycles_samples_per_second": cyc_rate,
+        "candela_samples_per_second": can_rate,
+        "speed_ratio": speed_ratio, "speed_target": SPEED_TARGET, "speed_pass": speed_ok,
+        "cycles_mean": cyc_mean, "candela_mean": can_mean,
+        "brightness_ratio": bright_ratio, "brightness_ratio_rgb": per_channel,
+        "brightness_tolerance": BRIGHTNESS_TOL, "brightness_pass": bright_ok,
+        "candela_native_samples_per_second_s2": native_sps,
+        "raw_rays_per_second": raw, "raw_note": raw_note,
+        "path_tracer_rays_per_second": pt_rate, "path_tracer_rays_method": pt_method,
+        "path_tracer_share_of_raw": share,
+    }
+
+    print()
+    print("-" * 78)
+    print(f"Results ({a.size}x{a.size}, {s1}->{s2} spp, {threads} threads; samples/s = W*H*dS/dt)")
+    print("-" * 78)
+    print(f"Cycles  samples/s          {fmt_rate(cyc_rate)}")
+    print(f"Candela samples/s          {fmt_rate(can_rate)}"
+          + (f"   (native stats at S2: {fmt_rate(native_sps)})" if native_sps else ""))
+    print(f"speed ratio Candela/Cycles {fmt(speed_ratio)}   target >= {SPEED_TARGET:.1f}   {verdict(speed_ok)}")
+    print(f"mean brightness (linear RGB, {s2} spp)  Cycles {fmt(cyc_mean, '.5f')}  Candela {fmt(can_mean, '.5f')}")
+    pcs = "" if not per_channel else "  (R/G/B " + " ".join(fmt(x) for x in per_channel) + ")"
+    print(f"brightness ratio Candela/Cycles {fmt(bright_ratio, '.4f')}{pcs}   target |r-1| <= "
+          f"{BRIGHTNESS_TOL:.0%}   {verdict(bright_ok)}")
+    print(f"raw Embree incoherent rays  {fmt_rate(raw) if raw else 'n/a' + (f' ({raw_note})' if raw_note else '')}")
+    print(f"path tracer rays/s          {fmt_rate(pt_rate)}" + (f"  [{pt_method}]" if pt_method else
+                                                              "  (the add-on reported no ray count)"))
+    print(f"path tracer share of raw    {'n/a' if share is None else f'{share:.1%}'}")
+    if report["errors"]:
+        print("errors: " + "; ".join(report["errors"]))
+    try:
+        report["machine"]["loadavg_at_end"] = [round(x, 2) for x in os.getloadavg()]
+    except OSError:
+        pass
+    path = write_report(outdir, report)
+    print(f"written {shown(path)}")
+    return 1 if crashed else 0
+
+
+def write_report(outdir, report):
+    path = os.path.join(outdir, "bench.json")
+    with open(path, "w") as f:
+        json.dump(report, f, indent=2, sort_keys=False)
+        f.write("\n")
+    return path
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:
+        sys.exit(130)
