@@ -8,7 +8,7 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib
 
-.PHONY: all deps build demo test bench install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench install-addon clean test-native test-blender
 
 all: build
 
@@ -41,6 +41,9 @@ test-blender: build
 
 bench: build
 	$(CLEAN_ENV) $(PYTHON) bench/bench.py --build $(BUILD)
+
+microbench: build
+	$(BUILD)/bin/candela_microbench
 
 # Installs the built add-on (with its native module) into the user's Blender 3.4 add-on folder.
 install-addon: build

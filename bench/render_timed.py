@@ -10,18 +10,15 @@ DIR/<engine>_<S>.exr).  Setup costs (scene export, BVH build, kernel load, file 
 sample count, so bench.py takes samples/s = W*H*(S2 - S1) / (t2 - t1) from the best time of each count.
 
 It also reports the mean linear RGB of every EXR written (read back with bpy.data.images.load), the number of
-rays Candela traced when the add-on tells (stdout stats line, or a `stats` dict the add-on keeps), and, with
+rays Candela traced (the add-on keeps the last render's native stats in render_loop.last_render_stats), and, with
 --dump, writes a scene dump with bpy.ops.candela.export_dump (tolerating its absence).
 
 The result is printed as one line `RENDER_TIMED_JSON {...}` (and written to --json if given).
 """
 
 import argparse
-import contextlib
-import io
 import json
 import os
-import re
 import sys
 import time
 import traceback
@@ -85,101 +82,11 @@ def set_samples(scene, engine, samples):
         raise ValueError(f"don't know how to set the sample count of engine {engine}")
 
 
-_RAY_PATTERNS = [
-    re.compile(r"\brays\b\s*[=:]\s*([0-9][0-9,._eE+]*)"),
-    re.compile(r"([0-9][0-9,._eE+]*)\s+rays\b"),
-]
-_SEC_PATTERNS = [
-    re.compile(r"render_seconds\s*[=:]\s*([0-9.eE+-]+)"),
-    re.compile(r"render(?:ed)?(?: time)?\s*[=:]?\s*([0-9.]+)\s*s\b", re.I),
-]
-
-
-def _num(text):
-    try:
-        return float(text.replace(",", "").replace("_", ""))
-    except ValueError:
-        return None
-
-
-def parse_stats(text):
-    """Find the ray count (and native render seconds) in the add-on's printed stats."""
-    out = {}
-    for line in text.splitlines():
-        if "ray" in line.lower():
-            for pat in _RAY_PATTERNS:
-                m = pat.search(line)
-                if m and _num(m.group(1)) is not None:
-                    out["rays"] = _num(m.group(1))
-                    break
-        for pat in _SEC_PATTERNS:
-            m = pat.search(line)
-            if m and _num(m.group(1)) is not None and "render_seconds" not in out:
-                out["render_seconds"] = _num(m.group(1))
-                break
-    return out
-
-
-_CAPTURED = {}
-
-
-def install_stats_hook():
-    """Capture `session.stats()` of every Candela render.
-
-    The add-on prints a summary line through `render_loop.summary_line(session, ...)`; wrapping that function
-    (looked up as a module global at call time) lets us read the native stats (rays, render_seconds, ...) without
-    touching the add-on.  Returns True when the hook is in place.
-    """
-    hooked = False
-    for modname, mod in list(sys.modules.items()):
-        if mod is None or not modname.endswith(".render_loop") or "candela" not in modname:
-            continue
-        orig = getattr(mod, "summary_line", None)
-        if orig is None or getattr(orig, "_bench_hook", False):
-            hooked = hooked or orig is not None
-            continue
-
-        def summary_line(session, *args, _orig=orig, **kwargs):
-            try:
-                _CAPTURED.clear()
-                _CAPTURED.update(dict(session.stats()))
-            except Exception as exc:             # never break the render
-                _CAPTURED["hook_error"] = repr(exc)
-            return _orig(session, *args, **kwargs)
-
-        summary_line._bench_hook = True
-        mod.summary_line = summary_line
-        hooked = True
-    return hooked
-
-
 def addon_stats():
-    """The native stats of the last Candela render (hook), or a stats dict the add-on keeps itself."""
-    if _CAPTURED:
-        return dict(_CAPTURED)
-    for modname, mod in list(sys.modules.items()):
-        if not modname.startswith("candela") or mod is None:
-            continue
-        for attr in ("last_stats", "LAST_STATS", "_last_stats", "stats"):
-            val = getattr(mod, attr, None)
-            if callable(val):
-                continue
-            if isinstance(val, dict) and "rays" in val:
-                return dict(val)
-    return None
-
-
-class _Tee(io.TextIOBase):
-    def __init__(self, real):
-        self.real = real
-        self.buf = io.StringIO()
-
-    def write(self, s):
-        self.buf.write(s)
-        return self.real.write(s)
-
-    def flush(self):
-        self.real.flush()
+    """The native stats of the last Candela render, as the add-on keeps them (render_loop.last_render_stats)."""
+    mod = sys.modules.get("candela.render_loop")
+    stats = getattr(mod, "last_render_stats", None) if mod is not None else None
+    return dict(stats) if stats else None
 
 
 def render_once(scene, engine, samples, path):
@@ -187,13 +94,9 @@ def render_once(scene, engine, samples, path):
     scene.render.filepath = path
     if os.path.exists(path):
         os.remove(path)
-    _CAPTURED.clear()
-    tee = _Tee(sys.stdout)
-    with contextlib.redirect_stdout(tee):
-        t0 = time.perf_counter()
-        res = bpy.ops.render.render(write_still=True)
-        t1 = time.perf_counter()
-    sys.stdout.flush()
+    t0 = time.perf_counter()
+    res = bpy.ops.render.render(write_still=True)
+    t1 = time.perf_counter()
     if "FINISHED" not in res:
         raise RuntimeError(f"render.render returned {res}")
     if not os.path.exists(path):
@@ -206,12 +109,6 @@ def render_once(scene, engine, samples, path):
             entry["rays"] = float(stats["rays"])
         if "render_seconds" in stats:
             entry["native_render_seconds"] = float(stats["render_seconds"])
-    if engine == "CANDELA" and "rays" not in entry:
-        parsed = parse_stats(tee.buf.getvalue())
-        if "rays" in parsed:
-            entry["rays"] = parsed["rays"]
-        if "render_seconds" in parsed:
-            entry["native_render_seconds"] = parsed["render_seconds"]
     return entry
 
 
@@ -302,8 +199,6 @@ def main():
                     settings[prop.identifier] = val
         result["settings"] = settings
 
-    if engine == "CANDELA":
-        result["stats_hook"] = install_stats_hook()
     if a.dump:
         result["dump"] = write_dump(os.path.abspath(a.dump))
 

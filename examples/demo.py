@@ -42,30 +42,6 @@ def _args():
     return ap.parse_args(argv)
 
 
-_CAPTURED = {}
-
-
-def _install_stats_hook():
-    """Capture the native `session.stats()` by wrapping the add-on's `render_loop.summary_line` (which it looks
-    up at call time); the add-on itself is untouched."""
-    for modname, mod in list(sys.modules.items()):
-        if mod is None or not modname.endswith(".render_loop") or "candela" not in modname:
-            continue
-        orig = getattr(mod, "summary_line", None)
-        if orig is None or getattr(orig, "_demo_hook", False):
-            continue
-
-        def summary_line(session, *args, _orig=orig, **kwargs):
-            try:
-                _CAPTURED.update(dict(session.stats()))
-            except Exception:
-                pass
-            return _orig(session, *args, **kwargs)
-
-        summary_line._demo_hook = True
-        mod.summary_line = summary_line
-
-
 def main():
     a = _args()
     engine = a.engine.upper()
@@ -111,8 +87,6 @@ def main():
     w = r.resolution_x * r.resolution_percentage // 100
     h = r.resolution_y * r.resolution_percentage // 100
 
-    if engine == "CANDELA":
-        _install_stats_hook()
     t0 = time.perf_counter()
     res = bpy.ops.render.render()
     seconds = time.perf_counter() - t0
@@ -148,7 +122,8 @@ def main():
               f"({sps:.0f} samples/s, render call wall time incl. setup)")
     else:
         print(f"{label}: {w}x{h}, {seconds:.2f} s")
-    stats = dict(_CAPTURED)
+    render_loop = sys.modules.get("candela.render_loop")
+    stats = dict(getattr(render_loop, "last_render_stats", {}) or {}) if engine == "CANDELA" else {}
     if stats:
         shown = {k: v for k, v in stats.items() if isinstance(v, (int, float, str))}
         print(f"{label} native stats: {shown}")

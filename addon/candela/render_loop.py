@@ -16,6 +16,10 @@ DISPLAY_FIRST_S = 0.5        # first progressive refresh; then the interval doub
 DISPLAY_CAP_S = 4.0          # ... up to this in the UI
 DISPLAY_CAP_BACKGROUND_S = 30.0   # nobody watches in -b: copying the image is wasted work
 
+# Native statistics of the most recent render in this process (session.stats() plus samples_done and phase), for
+# scripts that drive bpy.ops.render.render() and want the engine's own numbers (make bench, make demo).
+last_render_stats = {}
+
 
 class Backoff:
     """`due(now)` is True at most once per interval; the interval grows by `factor` up to `cap`."""
@@ -117,6 +121,8 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
         engine.end_result(result)
 
     progress = session.progress()
+    last_render_stats.clear()
+    last_render_stats.update(session.stats(), samples_done=progress.get("samples_done"), phase=progress.get("phase"))
     _forward_log(engine, session)
     if session.error:
         raise RuntimeError(session.error)
