@@ -1,6 +1,7 @@
 // The progressive tile loop shared by camera-driven integrators. The image is refined in passes of
 // growing sample counts (1, 1, 2, 4, …, 16 samples per pixel), each pass running over all tiles in
-// parallel, so the user sees the whole frame early and a cancel lands within one tile of one pass.
+// parallel, so the user sees the whole frame early. A cancel is seen between pixel rows: the tile being
+// rendered is abandoned (its pixels keep the passes already added), so workers stop within one row.
 // Sample k of pixel (x, y) always uses sampler state (seed, x, y, k): results are the same for any
 // thread count and tile order.
 #pragma once
@@ -33,6 +34,7 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                 Sampler sampler = make_sampler(ps.sampler, ps.seed, ps.samples);
                 PathStats stats;
                 for (int y = tile.y0; y < tile.y1; ++y) {
+                    if (ctx.cancel.cancelled()) return;  // abandon this tile's pass: nothing half-added
                     for (int x = tile.x0; x < tile.x1; ++x) {
                         const int fx = film.origin_x() + x, fy = film.origin_y() + y;  // full-frame pixel
                         PixelAccum& acc = accum[size_t(y - tile.y0) * tile.width() + (x - tile.x0)];

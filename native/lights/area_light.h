@@ -21,7 +21,6 @@ struct AreaLight {
     float area = 0.f;
 
     LightSample sample_li(const LightSampleContext& ctx, Vec2 s2) const {
-        LightSample s;
         Vec3 p;
         if (ellipse) {
             const Vec2 d = sample_uniform_disk_concentric(s2);
@@ -29,22 +28,7 @@ struct AreaLight {
         } else {
             p = center + u * (s2.x - 0.5f) + v * (s2.y - 0.5f);
         }
-        Vec3 w = p - ctx.p;
-        const float d2 = length_squared(w);
-        if (!(d2 > 0.f)) return s;
-        const float d = std::sqrt(d2);
-        w = w / d;
-        const float cos_l = -dot(w, normal);
-        if (cos_l <= 0.f) return s;  // the back does not emit
-        s.pdf = area_to_solid_angle(1.f / area, d2, cos_l);
-        if (!(s.pdf > 0.f) || !std::isfinite(s.pdf)) {
-            s.pdf = 0.f;
-            return s;
-        }
-        s.wi = w;
-        s.dist = d;
-        s.Li = radiance;
-        return s;
+        return sample_from_area_point(ctx.p, p, normal, area, radiance, /*two_sided=*/false);
     }
 
     /// Ray–light intersection within (tmin, tmax); only the emitting side counts.

@@ -1,6 +1,8 @@
 // What light sampling hands an integrator.
 #pragma once
 
+#include <cmath>
+
 #include "core/vec.h"
 
 namespace candela {
@@ -24,6 +26,27 @@ struct LightSample {
 /// Area-to-solid-angle conversion: p_ω = p_A · d² / |cos θ_light|.
 inline float area_to_solid_angle(float pdf_area, float dist_sq, float cos_light) {
     return cos_light > 1e-7f ? pdf_area * dist_sq / cos_light : 0.f;
+}
+
+/// The light sample for point `p` (normal `n`) drawn uniformly from an emitter of area `area` with radiance
+/// `radiance`, seen from `ref`. One-sided emitters shine toward +n only.
+inline LightSample sample_from_area_point(const Vec3& ref, const Vec3& p, const Vec3& n, float area,
+                                          const Color& radiance, bool two_sided) {
+    LightSample s;
+    Vec3 w = p - ref;
+    const float d2 = length_squared(w);
+    if (!(d2 > 0.f)) return s;
+    const float d = std::sqrt(d2);
+    w = w / d;
+    const float cos_l = two_sided ? std::fabs(dot(w, n)) : -dot(w, n);
+    if (cos_l <= 0.f) return s;  // the back of a one-sided emitter
+    const float pdf = area_to_solid_angle(1.f / area, d2, cos_l);
+    if (!(pdf > 0.f) || !std::isfinite(pdf)) return s;
+    s.pdf = pdf;
+    s.wi = w;
+    s.dist = d;
+    s.Li = radiance;
+    return s;
 }
 
 }  // namespace candela

@@ -18,23 +18,9 @@ struct TriangleLight {
     float area = 0.f;
 
     LightSample sample_li(const LightSampleContext& ctx, Vec2 u) const {
-        LightSample s;
         const Vec2 b = sample_uniform_triangle(u);
         const Vec3 p = p0 * b.x + p1 * b.y + p2 * (1.f - b.x - b.y);
-        Vec3 w = p - ctx.p;
-        const float d2 = length_squared(w);
-        if (!(d2 > 0.f)) return s;
-        const float d = std::sqrt(d2);
-        w = w / d;
-        s.pdf = area_to_solid_angle(1.f / area, d2, std::fabs(dot(w, normal)));
-        if (!(s.pdf > 0.f) || !std::isfinite(s.pdf)) {
-            s.pdf = 0.f;
-            return s;
-        }
-        s.wi = w;
-        s.dist = d;
-        s.Li = radiance;
-        return s;
+        return sample_from_area_point(ctx.p, p, normal, area, radiance, /*two_sided=*/true);
     }
 
     float pdf_li(const Vec3& d, float t) const { return area_to_solid_angle(1.f / area, t * t, std::fabs(dot(d, normal))); }
