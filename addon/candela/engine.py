@@ -29,6 +29,9 @@ class CandelaRenderEngine(bpy.types.RenderEngine):
 
     def update_render_passes(self, scene=None, renderlayer=None):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", 'COLOR')
+        layer_settings = getattr(renderlayer, "candela", None)
+        if layer_settings is not None and layer_settings.use_pass_noise:
+            self.register_pass(scene, renderlayer, "Noise", 1, "X", 'VALUE')
 
 
 def register():

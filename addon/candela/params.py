@@ -57,6 +57,8 @@ def to_native_params(scene, camera_data, argv=None):
     params = {
         "integrator": settings.integrator,
         "samples": settings.samples,
+        "time_limit": float(settings.time_limit),
+        "noise_threshold": float(settings.noise_threshold),
         "max_bounces": settings.max_bounces,
         "rr_start_bounce": settings.rr_start_bounce,
         "seed": settings.seed,

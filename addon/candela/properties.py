@@ -39,7 +39,21 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
     pixel_filter: EnumProperty(name="Pixel Filter", items=PIXEL_FILTERS, default="BLACKMAN_HARRIS")
     filter_width: FloatProperty(name="Filter Width", description="Pixel filter width in pixels", default=1.5,
                                 min=0.01, soft_max=10.0, subtype='PIXEL')
+    time_limit: FloatProperty(
+        name="Time Limit", description="Stop rendering after this many seconds (after export and scene build), "
+        "even if not all samples are done; 0 = no limit. Renders then differ between machines", default=0.0,
+        min=0.0, soft_max=3600.0, subtype='TIME_ABSOLUTE', unit='TIME_ABSOLUTE')
+    noise_threshold: FloatProperty(
+        name="Noise Threshold", description="Stop once the estimated relative error (RMSE / mean) of the whole "
+        "image falls below this; 0 = off. Checked from 16 samples per pixel on", default=0.0, min=0.0, max=0.5,
+        soft_max=0.1, precision=3, step=0.1)
     # integrator: added in register(), its items come from the native module loaded by then
+
+
+class CandelaViewLayerSettings(bpy.types.PropertyGroup):
+    use_pass_noise: BoolProperty(
+        name="Noise", description="Per-pixel estimated standard error of the pixel's luminance (pass 'Noise')",
+        default=False)
 
 
 def register():
@@ -49,8 +63,12 @@ def register():
         default="PATH" if any(i[0] == "PATH" for i in items) else items[0][0])
     bpy.utils.register_class(CandelaRenderSettings)
     bpy.types.Scene.candela = PointerProperty(type=CandelaRenderSettings, name="Candela Render Settings")
+    bpy.utils.register_class(CandelaViewLayerSettings)
+    bpy.types.ViewLayer.candela = PointerProperty(type=CandelaViewLayerSettings, name="Candela View Layer Settings")
 
 
 def unregister():
+    del bpy.types.ViewLayer.candela
+    bpy.utils.unregister_class(CandelaViewLayerSettings)
     del bpy.types.Scene.candela
     bpy.utils.unregister_class(CandelaRenderSettings)

@@ -53,28 +53,34 @@ def status_line(integrator, progress):
     done, total = int(progress.get("samples_done", 0)), int(progress.get("samples_total", 0))
     fraction = float(progress.get("fraction", 0.0))
     line = f"{name} | Sample {done}/{total} | Elapsed {format_duration(elapsed)}"
-    if fraction > 0.0:
+    error = progress.get("relative_error")
+    if error is not None:
+        line += f" | Noise {100.0 * error:.1f} %"
+    stop = progress.get("stop_reason") or ""
+    if stop and stop != "samples":
+        line += f" | Stopped: {stop}"
+    elif fraction > 0.0:
         line += f" | Remaining {format_duration(elapsed * (1.0 - fraction) / fraction)}"
     return line
 
 
-def _combined_pass(result):
-    for render_pass in result.layers[0].passes:
-        if render_pass.name == "Combined":
-            return render_pass
-    return None
+def _result_passes(result):
+    """The result's passes by name (Combined, plus Noise when the view layer asks for it)."""
+    return {render_pass.name: render_pass for render_pass in result.layers[0].passes}
 
 
-def _copy_combined(session, render_pass, width, height):
-    """Copy the native Combined pass into the result; False while the film does not exist yet."""
+def _copy_pass(session, passes, name, width, height):
+    """Copy native pass `name` into the result; False while it does not exist (yet)."""
+    render_pass = passes.get(name)
     if render_pass is None:
         return False
-    buf = session.get_pass("Combined")
+    buf = session.get_pass(name)
     if buf is None:
         return False
-    if buf.shape != (width * height, 4):
-        raise RuntimeError(f"native Combined pass has shape {buf.shape}, expected ({width * height}, 4)")
-    render_pass.rect.foreach_set(buf)   # must be a 2-D (N, 4) array in Blender 3.4 (a flat one crashes)
+    if buf.shape != (width * height, render_pass.channels):
+        raise RuntimeError(f"native {name} pass has shape {buf.shape}, expected ({width * height}, "
+                           f"{render_pass.channels})")
+    render_pass.rect.foreach_set(buf)   # must be a 2-D (N, channels) array in Blender 3.4 (a flat one crashes)
     return True
 
 
@@ -94,7 +100,7 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
     result = engine.begin_result(0, 0, width, height, layer=layer)
     joined = False
     try:
-        render_pass = _combined_pass(result)
+        passes = _result_passes(result)
         start = clock()
         display = Backoff(DISPLAY_FIRST_S, 2.0, DISPLAY_CAP_BACKGROUND_S if background else DISPLAY_CAP_S, start)
         status = Backoff(STATUS_INTERVAL_S, 1.0, STATUS_INTERVAL_S, start)
@@ -108,12 +114,13 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
             if status.due(now):
                 engine.update_stats("", status_line(integrator, progress))
                 _forward_log(engine, session)
-            if display.due(now) and _copy_combined(session, render_pass, width, height):
+            if display.due(now) and _copy_pass(session, passes, "Combined", width, height):
                 engine.update_result(result)
         session.join()
         joined = True
-        # Final (or, after a cancel, partial) image: end_result below hands it to Blender.
-        _copy_combined(session, render_pass, width, height)
+        # Final (or, after a cancel, partial) image and the other passes: end_result hands them to Blender.
+        for name in passes:
+            _copy_pass(session, passes, name, width, height)
     finally:
         if not joined:          # an exception in the loop: stop the workers before the result goes away
             session.cancel()
@@ -122,7 +129,8 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
 
     progress = session.progress()
     last_render_stats.clear()
-    last_render_stats.update(session.stats(), samples_done=progress.get("samples_done"), phase=progress.get("phase"))
+    last_render_stats.update(session.stats(), samples_done=progress.get("samples_done"), phase=progress.get("phase"),
+                             stop_reason=progress.get("stop_reason"), relative_error=progress.get("relative_error"))
     _forward_log(engine, session)
     if session.error:
         raise RuntimeError(session.error)
@@ -137,7 +145,11 @@ def summary_line(session, progress, width, height):
     seconds = float(stats.get("render_seconds", progress.get("elapsed_s", 0.0)))
     done, total = int(progress.get("samples_done", 0)), int(progress.get("samples_total", 0))
     rate = float(stats.get("samples_per_second", 0.0))
-    what = f"{done} samples" if progress.get("phase") != "cancelled" else f"{done} of {total} samples (cancelled)"
+    stop = progress.get("stop_reason") or ""
+    what = f"{done} samples" if stop in ("", "samples") else f"{done} of {total} samples (stopped: {stop})"
+    error = progress.get("relative_error")
+    if error is not None:
+        what += f", estimated noise {100.0 * error:.2f} %"
     return f"Candela: rendered {width}x{height}, {what} in {seconds:.2f} s ({rate:.1f} samples/s)"
 
 

@@ -1,6 +1,8 @@
 #include "film/film.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "core/error.h"
 
@@ -71,19 +73,48 @@ std::vector<float> Film::combined() const {
     return out;
 }
 
-std::vector<float> Film::variance() const {
+namespace {
+
+/// Sample variance of a pixel's luminance divided by its sample count: the variance of its mean.
+double variance_of_mean(const PixelAccum& p) {
+    if (p.n < 2) return 0.0;
+    const double mean = luminance(Color(float(p.r / p.n), float(p.g / p.n), float(p.b / p.n)));
+    const double s2 = std::max(0.0, (p.lum_sq - p.n * mean * mean) / (p.n - 1));
+    return s2 / p.n;
+}
+
+}  // namespace
+
+std::vector<float> Film::noise() const {
     std::vector<float> out(size_t(m_width) * m_height, 0.f);
     for_each_tile_locked([&](const Tile& t) {
         for (int y = t.y0; y < t.y1; ++y)
             for (int x = t.x0; x < t.x1; ++x) {
                 const size_t i = size_t(y) * m_width + x;
-                const PixelAccum& p = m_pixels[i];
-                if (p.n < 2) continue;
-                const double mean = luminance(Color(float(p.r / p.n), float(p.g / p.n), float(p.b / p.n)));
-                out[i] = float(std::max(0.0, (p.lum_sq - p.n * mean * mean) / (p.n - 1)));
+                out[i] = float(std::sqrt(variance_of_mean(m_pixels[i])));
             }
     });
     return out;
+}
+
+Film::NoiseEstimate Film::noise_estimate() const {
+    double var_sum = 0.0, lum_sum = 0.0;
+    bool complete = true;
+    for_each_tile_locked([&](const Tile& t) {
+        for (int y = t.y0; y < t.y1; ++y)
+            for (int x = t.x0; x < t.x1; ++x) {
+                const PixelAccum& p = m_pixels[size_t(y) * m_width + x];
+                complete &= p.n >= 2;
+                var_sum += variance_of_mean(p);
+                if (p.n) lum_sum += luminance(Color(float(p.r / p.n), float(p.g / p.n), float(p.b / p.n)));
+            }
+    });
+    const double pixels = double(m_width) * m_height;
+    NoiseEstimate e;
+    e.mean_luminance = lum_sum / pixels;
+    e.relative_rmse = (complete && e.mean_luminance > 0.0) ? std::sqrt(var_sum / pixels) / e.mean_luminance
+                                                            : std::numeric_limits<double>::infinity();
+    return e;
 }
 
 uint32_t Film::min_samples() const {

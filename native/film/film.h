@@ -69,8 +69,17 @@ public:
 
     /// "Combined" as RGBA float32, rows bottom to top (Blender's order); (W·H·4) floats.
     std::vector<float> combined() const;
-    /// Per-pixel sample variance of the luminance estimate (one channel).
-    std::vector<float> variance() const;
+    /// "Noise": per pixel, the estimated standard error of the pixel's mean luminance, √(s²/n), from the
+    /// running moments of its samples (0 until a pixel has two samples).
+    std::vector<float> noise() const;
+
+    /// Whole-image error estimate from the same moments: relative RMSE = √(mean over pixels of s²/n) divided
+    /// by the mean pixel luminance, the quantity the accuracy report measures against a converged reference.
+    struct NoiseEstimate {
+        double relative_rmse = 0.0;  // infinity until every pixel has two samples
+        double mean_luminance = 0.0;
+    };
+    NoiseEstimate noise_estimate() const;
     /// Samples taken per pixel (minimum over the film).
     uint32_t min_samples() const;
 

@@ -15,6 +15,8 @@ struct PixelSampling {
     std::string sampler = "RANDOM";
     PixelFilter filter{"BLACKMAN_HARRIS", 1.5f};
     bool film_transparent = false;
+    double time_limit = 0.0;       // seconds of rendering (after the scene is built); 0 = no limit
+    double noise_threshold = 0.0;  // stop once the estimated relative RMSE is below it; 0 = off
 
     static PixelSampling from_params(const Params& params);
 };

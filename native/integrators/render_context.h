@@ -9,13 +9,29 @@
 
 namespace candela {
 
+/// Why a render stopped (or that it has not).
+enum class StopReason : int { Running = 0, Samples, TimeLimit, NoiseThreshold, Cancelled };
+const char* stop_reason_name(StopReason r);
+
 struct RenderCounters {
     std::atomic<int> samples_done{0};   // samples per pixel completed over the whole film
     std::atomic<int> samples_total{0};
     std::atomic<uint64_t> paths{0};     // camera paths traced
     std::atomic<uint64_t> rays{0};      // rays cast (camera, bounce and shadow rays)
     std::atomic<uint64_t> nan_samples{0};  // non-finite or negative samples dropped before the film
+    std::atomic<double> relative_error{-1.0};  // estimated relative RMSE of the image; < 0 = not known yet
+    std::atomic<int> stop_reason{int(StopReason::Running)};
 };
+
+inline const char* stop_reason_name(StopReason r) {
+    switch (r) {
+        case StopReason::Running: return "";
+        case StopReason::Samples: return "samples";
+        case StopReason::TimeLimit: return "time limit";
+        case StopReason::NoiseThreshold: return "noise threshold";
+        default: return "cancelled";
+    }
+}
 
 struct RenderContext {
     const CancelToken& cancel;

@@ -4,9 +4,16 @@
 // rendered is abandoned (its pixels keep the passes already added), so workers stop within one row.
 // Sample k of pixel (x, y) always uses sampler state (seed, x, y, k): results are the same for any
 // thread count and tile order.
+//
+// Stopping: after `samples` passes' worth, or earlier by `time_limit` (the next pass is shrunk to what the
+// measured time per sample says still fits, and none is started if not even one sample per pixel fits)
+// or by `noise_threshold` (the film's estimated relative RMSE, checked after every pass once each pixel
+// has k_min_noise_samples samples, since a variance from fewer samples is too unreliable to stop on).
 #pragma once
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <vector>
 
 #include "film/film.h"
@@ -17,15 +24,33 @@
 
 namespace candela {
 
+inline constexpr int k_min_noise_samples = 16;
+
 /// Tracer: `Color Li(const Ray&, Sampler&, PathStats&, float* alpha) const`.
 template <typename Tracer>
 void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, const PixelSampling& ps,
                         const Tracer& tracer) {
     const Camera& camera = scene.camera();
+    using clock = std::chrono::steady_clock;
+    auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
     ctx.counters.samples_total = ps.samples;
+    const auto start = clock::now();
+    double seconds_per_sample = 0.0;  // per sample per pixel, from the last pass
+    StopReason stop = StopReason::Running;
     int done = 0, pass_size = 1;
     while (done < ps.samples && !ctx.cancel.cancelled()) {
-        const int begin = done, end = std::min(ps.samples, done + pass_size);
+        int size = pass_size;
+        if (ps.time_limit > 0.0 && done > 0) {
+            const double remaining = ps.time_limit - seconds_since(start);
+            const int fit = seconds_per_sample > 0.0 ? int(std::min(remaining / seconds_per_sample, 1e9)) : size;
+            if (fit < 1) {
+                stop = StopReason::TimeLimit;
+                break;
+            }
+            size = std::min(size, fit);
+        }
+        const int begin = done, end = std::min(ps.samples, done + size);
+        const auto pass_start = clock::now();
         parallel_for(
             ctx.threads, film.tiles().size(),
             [&](size_t tile_index) {
@@ -59,11 +84,25 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
             },
             &ctx.cancel);
         if (ctx.cancel.cancelled()) break;  // a partly rendered pass stays in the film as it is
+        seconds_per_sample = seconds_since(pass_start) / (end - begin);
         done = end;
         ctx.counters.samples_done = done;
+        const double error = film.noise_estimate().relative_rmse;
+        ctx.counters.relative_error = std::isfinite(error) ? error : -1.0;
+        if (ps.noise_threshold > 0.0 && done >= k_min_noise_samples && error <= ps.noise_threshold) {
+            stop = StopReason::NoiseThreshold;
+            break;
+        }
+        if (ps.time_limit > 0.0 && seconds_since(start) >= ps.time_limit && done < ps.samples) {
+            stop = StopReason::TimeLimit;
+            break;
+        }
         pass_size = std::min(pass_size * 2, 16);
         if (done == 1) pass_size = 1;
     }
+    if (ctx.cancel.cancelled()) stop = StopReason::Cancelled;
+    else if (stop == StopReason::Running) stop = StopReason::Samples;
+    ctx.counters.stop_reason = int(stop);
 }
 
 }  // namespace candela

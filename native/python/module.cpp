@@ -159,6 +159,8 @@ PYBIND11_MODULE(_native, m) {
                  d["samples_total"] = p.samples_total;
                  d["fraction"] = p.fraction;
                  d["elapsed_s"] = p.elapsed_s;
+                 d["relative_error"] = p.relative_error >= 0.0 ? py::object(py::float_(p.relative_error)) : py::none();
+                 d["stop_reason"] = stop_reason_name(p.stop_reason);
                  return d;
              })
         .def("stats",

@@ -122,6 +122,8 @@ SessionProgress Session::progress() const {
     p.samples_done = m_counters.samples_done;
     p.samples_total = m_counters.samples_total;
     p.fraction = p.samples_total > 0 ? double(p.samples_done) / p.samples_total : 0.0;
+    p.relative_error = m_counters.relative_error;
+    p.stop_reason = StopReason(m_counters.stop_reason.load());
     if (m_phase == SessionPhase::Done) p.fraction = 1.0;
     if (m_started)
         p.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start_time).count();
@@ -155,16 +157,16 @@ std::vector<std::string> Session::take_log() {
     return out;
 }
 
-std::vector<std::pair<std::string, int>> Session::pass_names() { return {{"Combined", 4}, {"Variance", 1}}; }
+std::vector<std::pair<std::string, int>> Session::pass_names() { return {{"Combined", 4}, {"Noise", 1}}; }
 
 std::vector<float> Session::get_pass(const std::string& name, int* channels) const {
     if (name == "Combined") {
         *channels = 4;
         return m_film->combined();
     }
-    if (name == "Variance") {
+    if (name == "Noise") {
         *channels = 1;
-        return m_film->variance();
+        return m_film->noise();
     }
     *channels = 0;
     return {};

@@ -28,6 +28,8 @@ struct SessionProgress {
     int samples_done = 0, samples_total = 0;
     double fraction = 0.0;
     double elapsed_s = 0.0;  // since start()
+    double relative_error = -1.0;  // estimated relative RMSE of the image (< 0: not known yet)
+    StopReason stop_reason = StopReason::Running;
 };
 
 struct SessionStats {

@@ -21,8 +21,8 @@ class FakeRect:
 
 
 class FakePass:
-    def __init__(self, name):
-        self.name, self.rect = name, FakeRect()
+    def __init__(self, name, channels=4):
+        self.name, self.channels, self.rect = name, channels, FakeRect()
 
 
 class FakeLayer:
@@ -103,6 +103,13 @@ def test_status_line_format():
     line = render_loop.status_line("PATH", {"phase": "rendering", "samples_done": 37, "samples_total": 256,
                                             "fraction": 0.25, "elapsed_s": 12.0})
     assert line == "Path | Sample 37/256 | Elapsed 00:12 | Remaining 00:36"
+
+
+def test_status_line_shows_noise_and_why_the_render_stopped():
+    progress = {"phase": "done", "samples_done": 48, "samples_total": 1024, "fraction": 48 / 1024,
+                "elapsed_s": 3.0, "relative_error": 0.0198, "stop_reason": "noise threshold"}
+    assert render_loop.status_line("PATH", progress) == \
+        "Path | Sample 48/1024 | Elapsed 00:03 | Noise 2.0 % | Stopped: noise threshold"
 
 
 def test_backoff_grows_and_caps():

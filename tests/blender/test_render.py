@@ -33,3 +33,24 @@ def test_render_border_result_size(tmp_path):
     pixels = render_to_exr(scene, str(tmp_path / "border.exr"))
     assert pixels.shape == (15, 20, 4)
     assert np.all(np.isfinite(pixels))
+
+
+def test_noise_pass_and_noise_threshold(tmp_path):
+    """The Noise pass reaches the render result (multilayer EXR), and a noise threshold ends the render early."""
+    import sys
+
+    scene = scenes.tiny_scene(width=32, height=24, samples=100000)
+    scene.candela.noise_threshold = 0.05
+    bpy.context.view_layer.candela.use_pass_noise = True
+    scene.render.image_settings.file_format = 'OPEN_EXR_MULTILAYER'
+    path = str(tmp_path / "noise.exr")
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    stats = sys.modules["candela.render_loop"].last_render_stats
+    assert stats["phase"] == "done" and stats["stop_reason"] == "noise threshold"
+    assert 16 <= stats["samples_done"] < 100000
+    # The EXR header lists the channels: the Noise pass is written beside Combined.
+    with open(path, "rb") as f:
+        header = f.read(8192)
+    assert b"Noise.X" in header, "the Noise pass is missing from the multilayer EXR"
+    assert b"Combined.R" in header

@@ -109,19 +109,21 @@ RenderResult render(SceneArrays arrays, Params params) {
     RenderResult r;
     int channels = 0;
     r.rgba = s.get_pass("Combined", &channels);
-    r.variance = s.get_pass("Variance", &channels);
+    r.noise = s.get_pass("Noise", &channels);
     r.width = s.width();
     r.height = s.height();
     const size_t n = size_t(r.width) * r.height;
-    const int spp = s.progress().samples_done;
     double sum = 0.0, var_sum = 0.0;
     for (size_t i = 0; i < n; ++i) {
         sum += r.rgba[4 * i] + r.rgba[4 * i + 1] + r.rgba[4 * i + 2];
-        var_sum += r.variance[i];
+        var_sum += double(r.noise[i]) * r.noise[i];
     }
     r.mean_rgb = sum / (3.0 * n);
-    // Var(mean over pixels) = Σ var_i/spp / n²  (pixels are independent).
-    r.standard_error = std::sqrt(var_sum / std::max(spp, 1)) / n;
+    // Var(mean over pixels) = Σ var(pixel mean) / n²  (pixels are independent).
+    r.standard_error = std::sqrt(var_sum) / n;
+    r.samples_done = s.progress().samples_done;
+    r.stop_reason = s.progress().stop_reason;
+    r.relative_error = s.progress().relative_error;
     return r;
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/params.h"
 #include "core/vec.h"
+#include "integrators/render_context.h"
 #include "scene/scene_arrays.h"
 
 namespace candela::test {
@@ -39,10 +40,13 @@ Params basic_params(int w, int h, int samples, int max_bounces);
 
 struct RenderResult {
     std::vector<float> rgba;      // bottom-up
-    std::vector<float> variance;  // per pixel, luminance
+    std::vector<float> noise;     // per pixel: standard error of the mean luminance
     int width = 0, height = 0;
     double mean_rgb = 0.0;        // mean over pixels and RGB channels
     double standard_error = 0.0;  // of mean_rgb's luminance estimate, from per-pixel sample variances
+    int samples_done = 0;
+    StopReason stop_reason = StopReason::Running;
+    double relative_error = -1.0;
 };
 
 RenderResult render(SceneArrays arrays, Params params);

@@ -2,9 +2,9 @@
 
 import bpy
 
-from . import compat, light, render, surfaces
+from . import compat, light, render, surfaces, view_layer
 
-classes = render.classes + light.classes + surfaces.classes
+classes = render.classes + light.classes + surfaces.classes + view_layer.classes
 
 
 def register():

@@ -17,6 +17,8 @@ class CANDELA_RENDER_PT_sampling(CandelaPanel, bpy.types.Panel):
         col = layout.column()
         col.prop(settings, "integrator")
         col.prop(settings, "samples")
+        col.prop(settings, "noise_threshold")
+        col.prop(settings, "time_limit")
         row = col.row(align=True)
         row.prop(settings, "seed")
         row.prop(settings, "use_animated_seed", text="", icon='TIME')
