@@ -8,7 +8,7 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib
 
-.PHONY: all deps build demo test bench microbench install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench accuracy install-addon clean test-native test-blender
 
 all: build
 
@@ -41,6 +41,10 @@ test-blender: build
 
 bench: build
 	$(CLEAN_ENV) $(PYTHON) bench/bench.py --build $(BUILD)
+
+# Error-vs-time report: docs/accuracy.md, docs/accuracy/*.png and measurements.csv (about 20 minutes).
+accuracy: build
+	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD)
 
 microbench: build
 	$(BUILD)/bin/candela_microbench

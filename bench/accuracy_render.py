@@ -1,0 +1,101 @@
+"""Blender side of `make accuracy`: build one scene, render it with one engine configuration at several sample
+counts in ONE Blender process, write an EXR per count and print the times as one JSON line.
+
+    bin/candela-blender -b --factory-startup --python-exit-code 1 --python bench/accuracy_render.py -- \
+        --scene veach_mis --engine CANDELA --set sampler=SOBOL --counts 1,2,4,8 --size 128 --threads 2 \
+        --out DIR --tag NAME
+
+Times exclude scene set-up, so that they measure the sampling itself:
+  Candela: the native render time of each render (session.stats()["render_seconds"]: no export, no BVH build);
+  Cycles:  the wall time of each render minus a set-up estimate, 2·t(1) − t(2) from two extra warm-up
+           renders at 1 and 2 samples (Cycles syncs and builds its BVH again for every render).
+"""
+
+import argparse
+import json
+import os
+import sys
+import time
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "examples"))
+
+import scenes  # noqa: E402
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    ap = argparse.ArgumentParser(prog="accuracy_render.py")
+    ap.add_argument("--scene", required=True)
+    ap.add_argument("--engine", required=True, choices=["CANDELA", "CYCLES"])
+    ap.add_argument("--set", action="append", default=[], help="scene.candela property override key=value")
+    ap.add_argument("--counts", required=True, help="comma-separated sample counts")
+    ap.add_argument("--size", type=int, default=128)
+    ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--tag", required=True)
+    return ap.parse_args(argv)
+
+
+def parse_value(text):
+    for cast in (int, float):
+        try:
+            return cast(text)
+        except ValueError:
+            pass
+    return text
+
+
+def render(scene, engine, samples, path):
+    if engine == "CANDELA":
+        scene.candela.samples = samples
+    else:
+        scene.cycles.samples = samples
+    scene.render.filepath = path
+    t0 = time.perf_counter()
+    result = bpy.ops.render.render(write_still=True)
+    wall = time.perf_counter() - t0
+    if "FINISHED" not in result or not os.path.exists(path):
+        raise RuntimeError(f"{engine} render of {samples} samples failed")
+    if engine == "CANDELA":
+        stats = sys.modules["candela.render_loop"].last_render_stats
+        return wall, float(stats["render_seconds"])
+    return wall, None
+
+
+def main():
+    a = parse_args()
+    scene = scenes.build(a.scene, bpy.context.scene, size=a.size, threads=a.threads)
+    scene.render.engine = a.engine
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    if a.engine == "CANDELA":
+        scene.candela.seed = a.seed
+        for kv in a.set:
+            key, value = kv.split("=", 1)
+            setattr(scene.candela, key, parse_value(value))
+    else:
+        scene.cycles.seed = a.seed
+    os.makedirs(a.out, exist_ok=True)
+    counts = [int(c) for c in a.counts.split(",")]
+    setup = 0.0
+    if a.engine == "CYCLES":
+        t1 = min(render(scene, a.engine, 1, os.path.join(a.out, f"{a.tag}_warm1.exr"))[0] for _ in range(2))
+        t2 = min(render(scene, a.engine, 2, os.path.join(a.out, f"{a.tag}_warm2.exr"))[0] for _ in range(2))
+        setup = max(0.0, 2.0 * t1 - t2)
+    runs = []
+    for n in counts:
+        path = os.path.join(a.out, f"{a.tag}_{n}.exr")
+        wall, native = render(scene, a.engine, n, path)
+        seconds = native if native is not None else max(wall - setup, 1e-6)
+        runs.append({"samples": n, "seconds": seconds, "wall_seconds": wall, "exr": path})
+    print("ACCURACY_JSON " + json.dumps({"scene": a.scene, "engine": a.engine, "settings": a.set,
+                                         "size": [scene.render.resolution_x, scene.render.resolution_y],
+                                         "setup_seconds": setup, "runs": runs}), flush=True)
+
+
+if __name__ == "__main__":
+    main()

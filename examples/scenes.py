@@ -1,0 +1,202 @@
+"""Test and report scenes built from scratch with Cycles nodes, for Candela and Cycles alike.
+
+    import scenes; scenes.build("veach_mis", bpy.context.scene, size=128)
+
+Scenes: "cornell_box" (examples/cornell_box.py), "soft_shadow" (an area light, a blocker and its penumbra),
+"veach_mis" (Veach's four glossy plates under four spheres of equal power and very different sizes,
+verification-cases.md §8.3, converted to Blender's Z-up), "glossy" (glossy and diffuse spheres under an area
+light and a dim sky). Every builder clears the scene and applies the shared render settings of
+cornell_box.configure_render / configure_cycles / configure_candela (same bounces, filter and seed).
+"""
+
+import math
+
+import bmesh
+import bpy
+from mathutils import Matrix
+
+import cornell_box as cb
+
+
+def _material(name, make_bsdf):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    shader = make_bsdf(nt)
+    nt.links.new(shader.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def diffuse(name, rgb):
+    def make(nt):
+        n = nt.nodes.new("ShaderNodeBsdfDiffuse")
+        n.inputs["Color"].default_value = (*rgb, 1.0)
+        return n
+    return _material(name, make)
+
+
+def glossy(name, rgb, roughness, distribution="BECKMANN"):
+    def make(nt):
+        n = nt.nodes.new("ShaderNodeBsdfGlossy")
+        n.distribution = distribution
+        n.inputs["Color"].default_value = (*rgb, 1.0)
+        n.inputs["Roughness"].default_value = roughness
+        return n
+    return _material(name, make)
+
+
+def emission(name, rgb, strength):
+    def make(nt):
+        n = nt.nodes.new("ShaderNodeEmission")
+        n.inputs["Color"].default_value = (*rgb, 1.0)
+        n.inputs["Strength"].default_value = strength
+        return n
+    return _material(name, make)
+
+
+def _object(scene, name, mesh, material, matrix=None):
+    mesh.materials.append(material)
+    ob = bpy.data.objects.new(name, mesh)
+    if matrix is not None:
+        ob.matrix_world = matrix
+    scene.collection.objects.link(ob)
+    return ob
+
+
+def _bmesh_to_mesh(name, bm):
+    me = bpy.data.meshes.new(name)
+    bm.to_mesh(me)
+    bm.free()
+    return me
+
+
+def cube(scene, name, material, matrix):
+    bm = bmesh.new()
+    bmesh.ops.create_cube(bm, size=2.0)            # [-1, 1]^3, as Mitsuba's cube
+    return _object(scene, name, _bmesh_to_mesh(name, bm), material, matrix)
+
+
+def rectangle(scene, name, material, matrix):
+    bm = bmesh.new()
+    bmesh.ops.create_grid(bm, x_segments=1, y_segments=1, size=1.0)   # [-1, 1]^2 at z = 0
+    return _object(scene, name, _bmesh_to_mesh(name, bm), material, matrix)
+
+
+def sphere(scene, name, material, centre, radius, segments=48, rings=24):
+    bm = bmesh.new()
+    bmesh.ops.create_uvsphere(bm, u_segments=segments, v_segments=rings, radius=radius)
+    ob = _object(scene, name, _bmesh_to_mesh(name, bm), material, Matrix.Translation(centre))
+    for poly in ob.data.polygons:
+        poly.use_smooth = True
+    return ob
+
+
+def camera(scene, location, rotation_deg, lens=50.0, sensor=36.0, fit="AUTO"):
+    cam = bpy.data.cameras.new("Camera")
+    cam.lens, cam.sensor_width, cam.sensor_fit = lens, sensor, fit
+    cam.clip_start, cam.clip_end = 0.01, 1000.0
+    ob = bpy.data.objects.new("Camera", cam)
+    ob.location = location
+    ob.rotation_euler = tuple(math.radians(a) for a in rotation_deg)
+    scene.collection.objects.link(ob)
+    scene.camera = ob
+    return ob
+
+
+def world(scene, rgb, strength):
+    w = bpy.data.worlds.new("World")
+    w.use_nodes = True
+    nt = w.node_tree
+    nt.nodes.clear()
+    bg = nt.nodes.new("ShaderNodeBackground")
+    bg.inputs["Color"].default_value = (*rgb, 1.0)
+    bg.inputs["Strength"].default_value = strength
+    nt.links.new(bg.outputs[0], nt.nodes.new("ShaderNodeOutputWorld").inputs["Surface"])
+    scene.world = w
+
+
+def area_light(scene, name, location, size, power, rotation_deg=(0.0, 0.0, 0.0)):
+    light = bpy.data.lights.new(name, 'AREA')
+    light.shape, light.size, light.energy = 'SQUARE', size, power
+    ob = bpy.data.objects.new(name, light)
+    ob.location = location
+    ob.rotation_euler = tuple(math.radians(a) for a in rotation_deg)
+    scene.collection.objects.link(ob)
+    return ob
+
+
+# Mitsuba's Y-up world to Blender's Z-up: (x, y, z) -> (x, -z, y).
+Y_UP_TO_Z_UP = Matrix(((1, 0, 0, 0), (0, 0, -1, 0), (0, 1, 0, 0), (0, 0, 0, 1)))
+
+
+def _mitsuba(rows):
+    return Y_UP_TO_Z_UP @ Matrix((rows[0], rows[1], rows[2], (0, 0, 0, 1)))
+
+
+def build_veach_mis(scene):
+    """Veach's MIS scene (Bitterli's conversion; verification-cases.md §8.3). Plates: Beckmann α 0.01 / 0.05 /
+    0.1 / 0.25, i.e. Cycles roughness √α; reflectance 0.3 stands in for the conductor's."""
+    plates = {
+        "Smooth": ((0.805757, 0.0961775, 0, 0.264069), (-0.673242, 0.115108, 0, 4.09801), (0, 0, 4, 0), 0.01),
+        "Glossy": ((0.972057, 0.0567134, 0, 3.06163), (-0.396994, 0.138865, 0, 2.71702), (0, 0, 4, 0), 0.05),
+        "Rough": ((1.03191, 0.0277252, 0, 7.09981), (-0.194077, 0.147415, 0, 1.81891), (0, 0, 4, 0), 0.1),
+        "SuperRough": ((1.04217, 0.0182831, 0, 10.6769), (-0.127982, 0.148882, 0, 1.23376), (0, 0, 4, 0), 0.25),
+    }
+    for name, (r0, r1, r2, alpha) in plates.items():
+        cube(scene, name, glossy(name, (0.3, 0.3, 0.3), math.sqrt(alpha)), _mitsuba((r0, r1, r2)))
+    backdrop = diffuse("Backdrop", (0.5, 0.5, 0.5))
+    rectangle(scene, "Floor", backdrop, _mitsuba(((9.9, 0, 0, 4.9), (0, -4.32743e-7, 9.9, 0), (0, -23.76, -1.03858e-6, 0))))
+    rectangle(scene, "Wall", backdrop, _mitsuba(((-4.32743e-7, -4.32743e-7, 9.9, -5), (-9.9, 1.89158e-14, -4.32743e-7, 9.9),
+                                                 (0, -23.76, -1.03858e-6, 0))))
+    for i, (z, radius, L) in enumerate(((-2.8, 1.0, 7.59909), (0.0, 0.5, 30.3964), (2.7, 0.05, 3039.64))):
+        centre = Y_UP_TO_Z_UP @ Matrix.Translation((0.0, 6.5, z)).to_translation()
+        sphere(scene, f"Light{i}", emission(f"Light{i}", (1, 1, 1), L), centre, radius)
+    # Mitsuba camera at (28.2792, 3.5, 0) looking −x, fov 35° across x.
+    camera(scene, (28.2792, 0.0, 3.5), (90.0, 0.0, 90.0), lens=18.0 / math.tan(math.radians(17.5)), fit="HORIZONTAL")
+    world(scene, (0, 0, 0), 0.0)
+    return 16 / 9
+
+
+def build_soft_shadow(scene):
+    """An area light over a floor with a blocker: the penumbra is where light sampling matters."""
+    rectangle(scene, "Floor", diffuse("Floor", (0.8, 0.8, 0.8)), Matrix.Diagonal((4, 4, 1, 1)))
+    cube(scene, "Blocker", diffuse("Blocker", (0.7, 0.3, 0.2)), Matrix.Translation((0, 0, 0.8)) @ Matrix.Diagonal((0.4, 0.4, 0.05, 1)))
+    area_light(scene, "Light", (0.3, 0.2, 2.0), 1.0, 40.0)
+    camera(scene, (0.0, -5.0, 3.2), (58.0, 0.0, 0.0), lens=40.0)
+    world(scene, (0.8, 0.9, 1.0), 0.05)
+    return 1.0
+
+
+def build_glossy(scene):
+    """Glossy and diffuse spheres on a floor, an area light and a dim sky."""
+    rectangle(scene, "Floor", diffuse("Floor", (0.5, 0.5, 0.5)), Matrix.Diagonal((5, 5, 1, 1)))
+    sphere(scene, "Glossy", glossy("Glossy", (0.8, 0.6, 0.3), 0.2, "GGX"), (-1.1, 0, 0.5), 0.5)
+    sphere(scene, "Rough", glossy("Rough", (0.6, 0.7, 0.8), 0.45, "GGX"), (0, 0, 0.5), 0.5)
+    sphere(scene, "Diffuse", diffuse("Diffuse", (0.3, 0.6, 0.3)), (1.1, 0, 0.5), 0.5)
+    area_light(scene, "Light", (0.5, -1.0, 3.0), 1.5, 300.0, rotation_deg=(20.0, 0.0, 0.0))
+    camera(scene, (0.0, -5.5, 1.8), (78.0, 0.0, 0.0), lens=45.0)
+    world(scene, (0.6, 0.7, 1.0), 0.15)
+    return 16 / 9
+
+
+BUILDERS = {"soft_shadow": build_soft_shadow, "veach_mis": build_veach_mis, "glossy": build_glossy}
+NAMES = ["cornell_box", *BUILDERS]
+
+
+def build(name, scene=None, size=128, samples=16, threads=0):
+    """Build scene `name` into `scene` (default: the context scene) at `size` pixels wide."""
+    scene = scene or bpy.context.scene
+    if name == "cornell_box":
+        cb.build_cornell_box(scene, size=size, samples=samples, threads=threads)
+        return scene
+    if name not in BUILDERS:
+        raise KeyError(f"unknown scene '{name}' (known: {', '.join(NAMES)})")
+    cb.clear_scene(scene)
+    aspect = BUILDERS[name](scene)
+    cb.configure_render(scene, size=size, threads=threads)
+    scene.render.resolution_y = max(1, round(size / aspect))
+    cb.configure_cycles(scene, samples=samples, threads=threads)
+    cb.configure_candela(scene, samples=samples, threads=threads)
+    return scene
