@@ -16,9 +16,11 @@ DISPLAY_FIRST_S = 0.5        # first progressive refresh; then the interval doub
 DISPLAY_CAP_S = 4.0          # ... up to this in the UI
 DISPLAY_CAP_BACKGROUND_S = 30.0   # nobody watches in -b: copying the image is wasted work
 
-# Native statistics of the most recent render in this process (session.stats() plus samples_done and phase), for
-# scripts that drive bpy.ops.render.render() and want the engine's own numbers (make bench, make demo).
+# Native statistics of the most recent render in this process (session.stats() plus samples_done, phase, stop
+# reason, noise estimate and the warnings reported), for scripts that drive bpy.ops.render.render() and want the
+# engine's own numbers (make bench, make demo, tests).
 last_render_stats = {}
+_warnings = []   # warnings reported during the current render
 
 
 class Backoff:
@@ -84,10 +86,15 @@ def _copy_pass(session, passes, name, width, height):
     return True
 
 
+def _warn(engine, message):
+    _warnings.append(message)
+    engine.report({'WARNING'}, message)
+
+
 def _forward_log(engine, session):
     for entry in session.take_log():
         message = entry[-1] if isinstance(entry, (tuple, list)) else entry
-        engine.report({'WARNING'}, f"Candela: {message}")
+        _warn(engine, f"Candela: {message}")
 
 
 def drive(engine, session, layer="", integrator="PATH", background=False, clock=time.monotonic, out=print):
@@ -129,9 +136,10 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
 
     progress = session.progress()
     last_render_stats.clear()
-    last_render_stats.update(session.stats(), samples_done=progress.get("samples_done"), phase=progress.get("phase"),
-                             stop_reason=progress.get("stop_reason"), relative_error=progress.get("relative_error"))
     _forward_log(engine, session)
+    last_render_stats.update(session.stats(), samples_done=progress.get("samples_done"), phase=progress.get("phase"),
+                             stop_reason=progress.get("stop_reason"), relative_error=progress.get("relative_error"),
+                             warnings=list(_warnings))
     if session.error:
         raise RuntimeError(session.error)
     engine.update_progress(1.0)
@@ -163,8 +171,9 @@ def render_frame(engine, depsgraph, background=False):
     warnings = Warnings()
     arrays = export_scene(depsgraph, camera, test_break=engine.test_break,
                           status=lambda text: engine.update_stats("", text), warnings=warnings)
+    _warnings.clear()
     for message in warnings.messages:
-        engine.report({'WARNING'}, message)
+        _warn(engine, message)
     if arrays is None:
         # Cancelled while exporting: still hand Blender a (blank) result, never none at all.
         engine.end_result(engine.begin_result(0, 0, width, height, layer=layer))

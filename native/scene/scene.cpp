@@ -159,6 +159,9 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             tl.p2 = v[2];
             const Vec3 c = cross(v[1] - v[0], v[2] - v[0]);
             tl.area = 0.5f * length(c);
+            if (!is_finite(v[0]) || !is_finite(v[1]) || !is_finite(v[2]) || !std::isfinite(tl.area))
+                throw InvalidScene("an emissive triangle of mesh " + std::to_string(m) +
+                                   " is not finite after its object's transform (is the scale too large?)");
             tl.normal = tl.area > 0.f ? normalize(c) : Vec3(0.f, 0.f, 1.f);
             tl.radiance = m_materials[s.material[t - r.tri_begin]].emission;
             // Degenerate triangles keep their light slot (ranks stay dense) but have zero power, so they

@@ -7,6 +7,7 @@ this one depsgraph walk: never keep it.
 
 import numpy as np
 
+from .common import ExportError
 from .mesh import read_mesh
 
 
@@ -26,6 +27,10 @@ class GeometryTable:
 
     def add(self, ob, matrix):
         """Add one instance of the evaluated object `ob` with object → world `matrix` ((4, 4) float32)."""
+        # Blender keeps an infinite scale as a huge finite matrix: treat anything beyond 1e30 as not finite.
+        if not np.isfinite(matrix).all() or np.abs(matrix).max() > 1e30:
+            raise ExportError(f"object '{ob.name}' has a non-finite transform (NaN or Inf in its location, "
+                              "rotation or scale)")
         slots = tuple(slot.material for slot in ob.material_slots)
         key = self._key(ob, slots)
         index = self._by_key.get(key)

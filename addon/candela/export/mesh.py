@@ -7,6 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .common import ExportError
+
 
 @dataclass
 class MeshData:
@@ -32,10 +34,16 @@ def read_mesh(ob):
         tris = me.loop_triangles
         positions = np.empty((nv, 3), np.float32)
         me.vertices.foreach_get("co", positions.ravel())
+        bad = ~np.isfinite(positions).all(axis=1)
+        if bad.any():
+            raise ExportError(f"object '{ob.name}': {int(bad.sum())} vertices have non-finite (NaN or Inf) "
+                              f"coordinates, the first is vertex {int(np.argmax(bad))}")
         triangles = np.empty((nt, 3), np.int32)
         tris.foreach_get("vertices", triangles.ravel())
         normals = np.empty((nt, 3, 3), np.float32)
         tris.foreach_get("split_normals", normals.ravel())
+        # Degenerate faces can give non-finite normals: zero means "use the geometric normal" to the renderer.
+        normals[~np.isfinite(normals)] = 0.0
         smooth = np.empty(nt, bool)
         tris.foreach_get("use_smooth", smooth)
         material_index = np.empty(nt, np.int32)
