@@ -8,7 +8,7 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib
 
-.PHONY: all deps build demo test bench microbench accuracy install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench accuracy fuzz test-sanitize robustness-report install-addon clean test-native test-blender
 
 all: build
 
@@ -45,6 +45,24 @@ bench: build
 # Error-vs-time report: docs/accuracy.md, docs/accuracy/*.png and measurements.csv (about 20 minutes).
 accuracy: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD)
+
+# 20,000 random scenes under every integrator (make test runs 1,000).
+fuzz: build
+	CANDELA_FUZZ_COUNT=20000 $(BUILD)/bin/candela_robustness_tests --gtest_filter='Fuzz.*'
+
+# The C++ suites and a short render under AddressSanitizer + UndefinedBehaviorSanitizer (own build directory).
+test-sanitize: build
+	cmake -S . -B $(BUILD)-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCANDELA_SANITIZE=ON \
+	    -DCANDELA_ENABLE_PYTHON=OFF -DCANDELA_ENABLE_BENCH=OFF
+	cmake --build $(BUILD)-sanitize -j $(JOBS) --target candela_tests candela_robustness_tests candela
+	$(BUILD)-sanitize/bin/candela_tests
+	CANDELA_FUZZ_COUNT=200 $(BUILD)-sanitize/bin/candela_robustness_tests
+	$(CLEAN_ENV) $(PYTHON) tests/robustness/write_dump.py --build $(BUILD) $(BUILD)-sanitize/dump
+	$(BUILD)-sanitize/bin/candela $(BUILD)-sanitize/dump -o $(BUILD)-sanitize/render.exr --samples 4
+
+# docs/robustness.md from a fresh run of the robustness cases.
+robustness-report: build
+	$(CLEAN_ENV) $(PYTHON) tests/robustness/report.py --build $(BUILD)
 
 microbench: build
 	$(BUILD)/bin/candela_microbench

@@ -14,8 +14,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "film/film.h"
 #include "integrators/pixel_sampling.h"
 #include "integrators/render_context.h"
@@ -71,7 +73,12 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                             Color L = tracer.Li(ray, sampler, stats, &alpha);
                             ++stats.paths;
                             // Non-finite or negative radiance never reaches the film: drop and count it.
+                            // Debug builds stop right where it arises instead, naming the sample.
                             if (!is_finite(L) || min_component(L) < 0.f) {
+#ifndef NDEBUG
+                                throw InternalError("non-finite or negative radiance at pixel (" + std::to_string(fx) +
+                                                    ", " + std::to_string(fy) + "), sample " + std::to_string(s));
+#endif
                                 ++stats.nan_samples;
                                 L = Color(0.f);
                             }
