@@ -62,6 +62,7 @@ def to_native_params(scene, camera_data, argv=None):
         "max_bounces": settings.max_bounces,
         "rr_start_bounce": settings.rr_start_bounce,
         "seed": settings.seed,
+        "sampler": settings.sampler,
         "pixel_filter": settings.pixel_filter,
         "filter_width": float(settings.filter_width),
         # render.threads honours `-t N` and the Fixed/Auto-detect setting.

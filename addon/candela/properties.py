@@ -11,6 +11,14 @@ PIXEL_FILTERS = [
     ("GAUSSIAN", "Gaussian", "Gaussian filter", 1),
     ("BLACKMAN_HARRIS", "Blackman-Harris", "Blackman-Harris filter, Cycles' default", 2),
 ]
+SAMPLERS = [
+    ("RANDOM", "Random", "Independent uniform random samples", 0),
+    ("STRATIFIED", "Stratified (jittered)", "One jittered sample per stratum, strata shuffled per dimension", 1),
+    ("NROOKS", "N-Rooks", "Latin hypercube: one sample per row and per column of every 2-D dimension", 2),
+    ("HALTON", "Halton", "Halton sequence (prime bases), Owen-scrambled per pixel", 3),
+    ("HAMMERSLEY", "Hammersley", "Hammersley point set for the sample count, Owen-scrambled per pixel", 4),
+    ("SOBOL", "Sobol (Owen)", "Owen-scrambled, shuffled Sobol (0,2)-sequence per dimension pair", 5),
+]
 INTEGRATOR_NUMBERS = {"PATH": 0, "BDPT": 1, "MLT": 2, "PHOTON": 3, "IRRADIANCE_CACHE": 4}
 INTEGRATOR_LABELS = {"PATH": "Path Tracing", "BDPT": "Bidirectional", "MLT": "Metropolis",
                      "PHOTON": "Photon Mapping", "IRRADIANCE_CACHE": "Irradiance Cache"}
@@ -36,6 +44,8 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
                       default=0, min=0)
     use_animated_seed: BoolProperty(name="Animated Seed", description="Add the frame number to the seed",
                                     default=False)
+    sampler: EnumProperty(name="Sampler", description="Pattern of the sample values drawn per pixel",
+                          items=SAMPLERS, default="SOBOL")
     pixel_filter: EnumProperty(name="Pixel Filter", items=PIXEL_FILTERS, default="BLACKMAN_HARRIS")
     filter_width: FloatProperty(name="Filter Width", description="Pixel filter width in pixels", default=1.5,
                                 min=0.01, soft_max=10.0, subtype='PIXEL')

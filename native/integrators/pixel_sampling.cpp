@@ -10,7 +10,7 @@ PixelSampling PixelSampling::from_params(const Params& params) {
     s.samples = params.get<int>("samples", 64);
     if (s.samples < 1 || s.samples > (1 << 24)) throw InvalidParameter("samples must be between 1 and 16777216");
     s.seed = static_cast<uint64_t>(params.get<int64_t>("seed", 0));
-    s.sampler = params.get_enum("sampler", "RANDOM", sampler_names());
+    s.sampler = params.get_enum("sampler", "SOBOL", sampler_names());
     s.filter = PixelFilter(params.get_enum("pixel_filter", "BLACKMAN_HARRIS", PixelFilter::names()),
                            params.get<float>("filter_width", 1.5f));
     s.film_transparent = params.get<bool>("film_transparent", false);

@@ -12,7 +12,7 @@ namespace candela {
 struct PixelSampling {
     int samples = 64;
     uint64_t seed = 0;
-    std::string sampler = "RANDOM";
+    std::string sampler = "SOBOL";
     PixelFilter filter{"BLACKMAN_HARRIS", 1.5f};
     bool film_transparent = false;
     double time_limit = 0.0;       // seconds of rendering (after the scene is built); 0 = no limit

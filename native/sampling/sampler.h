@@ -1,7 +1,29 @@
 // Pixel samplers: a closed family of value types behind std::variant. A sampler is positioned at
-// (pixel, sample index) and then hands out sample dimensions in a fixed order (pixel filter, lens, then
-// per bounce light selection, light position, BSDF direction, roulette), so every value depends only on
-// (seed, pixel, sample index, dimension) — never on the thread or tile order.
+// (pixel, sample index); every value it hands out is a pure function of (seed, pixel, sample index,
+// dimension), so images never depend on the thread count, the tile order or what was asked before.
+//
+// Dimensions are named (Dim): the camera uses Filter (2-D) and Lens (2-D, reserved), every bounce uses
+// LightSelect (1-D), Light (2-D), Bsdf (2-D) and Roulette (1-D). dimension_index() maps a name and a
+// bounce to a fixed coordinate index of the sample vector; a 2-D request at index d covers d and d + 1.
+// A 2-D request is one 2-D pattern (a √N×√N jittered grid, an N-rooks pair, a Sobol (0,2)-sequence pair…),
+// never two unrelated 1-D patterns.
+//
+// Samplers ("sampler" params key; the add-on's enum identifiers):
+//   RANDOM      independent uniform values, hashed from (seed, pixel, index, dimension).
+//   STRATIFIED  jittered: one sample per stratum; 2-D requests use an nx×ny grid (nx·ny = N with nx the
+//               largest divisor ≤ √N if ny ≤ 2nx; otherwise nx = ⌊√N⌋, ny = ⌊N/nx⌋ and the few sample indices
+//               beyond nx·ny are independent), 1-D requests N strata; strata are visited in a random
+//               permutation per (pixel, dimension), so dimensions do not correlate.
+//   NROOKS      Latin hypercube: N strata on each axis, a random permutation per (pixel, dimension, axis).
+//   HALTON      Φ_{p_d}(i) in the d-th prime base, Owen-scrambled per (pixel, dimension) (hashed digit
+//               permutations seeded by the preceding digits).
+//   HAMMERSLEY  (i/N, Φ_2(i), Φ_3(i), …), each coordinate Owen-scrambled per (pixel, dimension).
+//   SOBOL       Burley 2020: each 1-D or 2-D request is the (0,2)-sequence formed by Sobol dimensions 0 and 1,
+//               with its index shuffled (base-2 Owen scramble of the index) and its values Owen-scrambled by
+//               hashes of (pixel, dimension), so different requests are independent padded patterns.
+// Halton and Hammersley use radical inverses for the first k_max_radical_inverse_dims dimensions (a path of
+// about 40 bounces) and independent hashed values beyond; a sample index ≥ N (the fixed sample count) also
+// falls back to independent values for the samplers that need N. All values are in [0, 1).
 #pragma once
 
 #include <cstdint>
@@ -14,38 +36,140 @@
 
 namespace candela {
 
-/// Independent uniform random samples ("RANDOM"): one PCG32 stream per (seed, pixel, sample index).
-class IndependentSampler {
+/// Named sample dimensions. Camera dimensions are absolute; the per-bounce ones are offsets to which
+/// dimension_index() adds k_bounce_dimensions per bounce.
+enum class Dim : uint32_t {
+    Filter = 0,       // 2-D: offset inside the pixel filter
+    Lens = 2,         // 2-D: point on the lens (reserved: the pinhole camera does not draw it)
+    LightSelect = 4,  // 1-D per bounce: which light NEE samples
+    Light = 5,        // 2-D per bounce: point on that light
+    Bsdf = 7,         // 2-D per bounce: BSDF direction
+    Roulette = 9,     // 1-D per bounce: Russian roulette
+};
+inline constexpr uint32_t k_camera_dimensions = 4;
+inline constexpr uint32_t k_bounce_dimensions = 6;
+/// Halton and Hammersley use radical inverses below this dimension, independent values from here on.
+inline constexpr uint32_t k_max_radical_inverse_dims = 256;
+
+/// The coordinate index of a named dimension at a bounce (camera dimensions ignore the bounce).
+constexpr uint32_t dimension_index(Dim d, int bounce = 0) {
+    const uint32_t base = static_cast<uint32_t>(d);
+    return base < k_camera_dimensions ? base : base + k_bounce_dimensions * static_cast<uint32_t>(bounce);
+}
+
+/// State shared by every sampler: the pixel sample being drawn and the next dimension for the
+/// sequential get_1d()/get_2d() interface.
+class SamplerBase {
 public:
-    explicit IndependentSampler(uint64_t seed) : m_seed(seed) {}
+    SamplerBase(uint64_t seed, int samples_per_pixel)
+        : m_seed(seed), m_spp(samples_per_pixel < 1 ? 1u : uint32_t(samples_per_pixel)) {}
 
     void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
-        const uint64_t pixel = (static_cast<uint64_t>(py) << 32) | px;
-        m_rng.seed(hash_values(m_seed, pixel, sample_index), mix64(pixel ^ m_seed));
+        m_pixel_key = hash_values(m_seed, (uint64_t(py) << 32) | px, 0x706978656cULL);
+        m_index = sample_index;
+        m_next_dim = k_camera_dimensions;
     }
-    float get_1d() { return m_rng.next_float(); }
-    Vec2 get_2d() {
-        const float a = m_rng.next_float();
-        return {a, m_rng.next_float()};
+    uint32_t take_dims(uint32_t n) {
+        const uint32_t d = m_next_dim;
+        m_next_dim += n;
+        return d;
     }
-    Vec2 get_pixel_2d() { return get_2d(); }
+    uint32_t samples_per_pixel() const { return m_spp; }
 
-private:
+protected:
+    /// Seed of one randomisation of one dimension of this pixel.
+    uint64_t dim_key(uint32_t dim, uint32_t purpose = 0) const {
+        return hash_combine(m_pixel_key, (uint64_t(purpose) << 32) | dim);
+    }
+    float independent_1d(uint32_t dim) const;
+    Vec2 independent_2d(uint32_t dim) const;
+
     uint64_t m_seed;
-    Pcg32 m_rng;
+    uint32_t m_spp;
+    uint64_t m_pixel_key = 0;
+    uint32_t m_index = 0;
+    uint32_t m_next_dim = k_camera_dimensions;
 };
 
-using Sampler = std::variant<IndependentSampler>;
+class IndependentSampler : public SamplerBase {
+public:
+    using SamplerBase::SamplerBase;
+    float sample_1d(uint32_t dim) const { return independent_1d(dim); }
+    Vec2 sample_2d(uint32_t dim) const { return independent_2d(dim); }
+};
+
+class StratifiedSampler : public SamplerBase {
+public:
+    StratifiedSampler(uint64_t seed, int samples_per_pixel);
+    float sample_1d(uint32_t dim) const;
+    Vec2 sample_2d(uint32_t dim) const;
+    uint32_t grid_x() const { return m_nx; }
+    uint32_t grid_y() const { return m_ny; }
+
+private:
+    uint32_t m_nx, m_ny;  // 2-D strata grid; m_nx·m_ny ≤ N
+};
+
+class NRooksSampler : public SamplerBase {
+public:
+    using SamplerBase::SamplerBase;
+    float sample_1d(uint32_t dim) const;
+    Vec2 sample_2d(uint32_t dim) const;
+};
+
+class HaltonSampler : public SamplerBase {
+public:
+    using SamplerBase::SamplerBase;
+    float sample_1d(uint32_t dim) const;
+    Vec2 sample_2d(uint32_t dim) const { return {sample_1d(dim), sample_1d(dim + 1)}; }
+};
+
+class HammersleySampler : public SamplerBase {
+public:
+    using SamplerBase::SamplerBase;
+    float sample_1d(uint32_t dim) const;
+    Vec2 sample_2d(uint32_t dim) const { return {sample_1d(dim), sample_1d(dim + 1)}; }
+};
+
+class SobolSampler : public SamplerBase {
+public:
+    using SamplerBase::SamplerBase;
+    float sample_1d(uint32_t dim) const;
+    Vec2 sample_2d(uint32_t dim) const;
+};
+
+using Sampler = std::variant<IndependentSampler, StratifiedSampler, NRooksSampler, HaltonSampler, HammersleySampler,
+                             SobolSampler>;
 
 /// Names accepted by make_sampler (the add-on's `sampler` enum identifiers).
 std::vector<std::string> sampler_names();
+/// samples_per_pixel is the N of the strata / the Hammersley set; sample indices are expected in [0, N).
 Sampler make_sampler(const std::string& name, uint64_t seed, int samples_per_pixel);
 
 inline void start_pixel_sample(Sampler& s, uint32_t px, uint32_t py, uint32_t index) {
     std::visit([&](auto& v) { v.start_pixel_sample(px, py, index); }, s);
 }
-inline float get_1d(Sampler& s) { return std::visit([](auto& v) { return v.get_1d(); }, s); }
-inline Vec2 get_2d(Sampler& s) { return std::visit([](auto& v) { return v.get_2d(); }, s); }
-inline Vec2 get_pixel_2d(Sampler& s) { return std::visit([](auto& v) { return v.get_pixel_2d(); }, s); }
+
+/// Value of coordinate `dim` (1-D) or coordinates dim, dim + 1 (2-D) of the current pixel sample.
+inline float sample_1d_at(const Sampler& s, uint32_t dim) {
+    return std::visit([&](const auto& v) { return v.sample_1d(dim); }, s);
+}
+inline Vec2 sample_2d_at(const Sampler& s, uint32_t dim) {
+    return std::visit([&](const auto& v) { return v.sample_2d(dim); }, s);
+}
+
+/// Named dimensions: the interface integrators use.
+inline float get_1d(const Sampler& s, Dim d, int bounce = 0) { return sample_1d_at(s, dimension_index(d, bounce)); }
+inline Vec2 get_2d(const Sampler& s, Dim d, int bounce = 0) { return sample_2d_at(s, dimension_index(d, bounce)); }
+inline Vec2 get_pixel_2d(const Sampler& s) { return get_2d(s, Dim::Filter); }
+
+/// Sequential interface: successive dimensions from k_camera_dimensions on (the same layout as the named
+/// per-bounce dimensions when drawn in the order LightSelect, Light, Bsdf, Roulette).
+inline float get_1d(Sampler& s) {
+    return std::visit([](auto& v) { return v.sample_1d(v.take_dims(1)); }, s);
+}
+inline Vec2 get_2d(Sampler& s) {
+    return std::visit([](auto& v) { return v.sample_2d(v.take_dims(2)); }, s);
+}
 
 }  // namespace candela

@@ -19,6 +19,7 @@ class CANDELA_RENDER_PT_sampling(CandelaPanel, bpy.types.Panel):
         col.prop(settings, "samples")
         col.prop(settings, "noise_threshold")
         col.prop(settings, "time_limit")
+        col.prop(settings, "sampler")
         row = col.row(align=True)
         row.prop(settings, "seed")
         row.prop(settings, "use_animated_seed", text="", icon='TIME')

@@ -88,11 +88,11 @@ Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
         const Vec3 wo_local = frame.to_local(wo);
         const Bsdf bsdf = material.bsdf();
 
-        // Sample dimensions are always consumed in the same order: light choice, light point, BSDF, roulette.
-        const float u_select = get_1d(sampler);
-        const Vec2 u_light = get_2d(sampler);
-        const Vec2 u_bsdf = get_2d(sampler);
-        const float u_rr = get_1d(sampler);
+        // Named sample dimensions: each is the same sequence dimension for every sample of every pixel.
+        const float u_select = get_1d(sampler, Dim::LightSelect, bounce);
+        const Vec2 u_light = get_2d(sampler, Dim::Light, bounce);
+        const Vec2 u_bsdf = get_2d(sampler, Dim::Bsdf, bounce);
+        const float u_rr = get_1d(sampler, Dim::Roulette, bounce);
 
         // Next-event estimation.
         if (has_nee) {
