@@ -2,7 +2,9 @@
 // Rays are made like a path tracer's secondary rays: camera rays find surface points, then each point
 // shoots a uniformly random direction over the sphere (incoherent). Only the closest-hit queries are
 // timed (bare rtcIntersect1, no shading lookups), on the same thread count as renders. Prints one JSON line.
-//   candela_bench_rays DUMP_DIR [--rays N] [--threads T]
+// --skip-origin runs the same rays through Scene::intersect with the origin triangle skipped by Embree's
+// context filter (what the path tracer does), to show that filter's cost.
+//   candela_bench_rays DUMP_DIR [--rays N] [--threads T] [--skip-origin]
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -25,9 +27,11 @@ int main(int argc, char** argv) {
     }
     size_t ray_count = 2'000'000;
     int threads = 0;
-    for (int i = 2; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--rays")) ray_count = std::stoull(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--threads")) threads = std::stoi(argv[i + 1]);
+    bool skip_origin = false;
+    for (int i = 2; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--rays") && i + 1 < argc) ray_count = std::stoull(argv[++i]);
+        else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::stoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--skip-origin")) skip_origin = true;
     }
     try {
         SceneDump dump = read_scene_dump(argv[1]);
@@ -38,6 +42,7 @@ int main(int argc, char** argv) {
 
         // Ray origins on visible surfaces, directions uniform on the sphere.
         std::vector<Ray> rays;
+        std::vector<PrimitiveRef> origins;
         rays.reserve(ray_count);
         Pcg32 rng(7, 11);
         size_t attempts = 0;
@@ -48,6 +53,7 @@ int main(int argc, char** argv) {
             if (!scene.intersect(primary, &hit)) continue;
             const Vec3 d = sample_uniform_sphere({rng.next_float(), rng.next_float()});
             rays.push_back({spawn_origin(hit.p, hit.ng, d), d, 0.f, 1e30f});
+            origins.push_back(hit.primitive);
         }
         if (rays.empty()) throw std::runtime_error("the camera sees no surface");
 
@@ -56,6 +62,13 @@ int main(int argc, char** argv) {
         const auto t0 = std::chrono::steady_clock::now();
         parallel_for(threads, chunks, [&](size_t c) {
             uint32_t n = 0;
+            if (skip_origin) {
+                SurfaceHit hit;
+                for (size_t i = c * chunk; i < std::min(rays.size(), (c + 1) * chunk); ++i)
+                    n += scene.intersect(rays[i], &hit, origins[i]);
+                hits[c] = n;
+                return;
+            }
             RTCIntersectContext context;
             rtcInitIntersectContext(&context);
             for (size_t i = c * chunk; i < std::min(rays.size(), (c + 1) * chunk); ++i) {
@@ -72,8 +85,10 @@ int main(int argc, char** argv) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         size_t total_hits = 0;
         for (uint32_t h : hits) total_hits += h;
-        std::printf("{\"rays\": %zu, \"seconds\": %.6f, \"rays_per_second\": %.1f, \"hit_fraction\": %.4f, \"threads\": %d}\n",
-                    rays.size(), seconds, rays.size() / seconds, double(total_hits) / rays.size(), resolve_thread_count(threads));
+        std::printf("{\"rays\": %zu, \"seconds\": %.6f, \"rays_per_second\": %.1f, \"hit_fraction\": %.4f, \"threads\": %d, "
+                    "\"skip_origin\": %s}\n",
+                    rays.size(), seconds, rays.size() / seconds, double(total_hits) / rays.size(),
+                    resolve_thread_count(threads), skip_origin ? "true" : "false");
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

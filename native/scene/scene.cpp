@@ -40,6 +40,30 @@ Affine camera_matrix(const SceneArrays& arrays) {
     return m;
 }
 
+/// Embree's per-query context plus the triangles the query must ignore. The context filter runs only when
+/// a query sets one (filter == nullptr costs nothing).
+struct SkipContext {
+    RTCIntersectContext context;
+    PrimitiveRef skip[2];
+};
+
+void skip_filter(const RTCFilterFunctionNArguments* args) {
+    const auto* ctx = reinterpret_cast<const SkipContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const PrimitiveRef hit{RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i),
+                               RTCHitN_instID(args->hit, args->N, i, 0)};
+        if (hit == ctx->skip[0] || hit == ctx->skip[1]) args->valid[i] = 0;
+    }
+}
+
+void init_context(SkipContext* c, const PrimitiveRef& a, const PrimitiveRef& b) {
+    rtcInitIntersectContext(&c->context);
+    c->skip[0] = a;
+    c->skip[1] = b;
+    if (a.valid() || b.valid()) c->context.filter = &skip_filter;
+}
+
 bool progress_monitor(void* ptr, double) {
     const auto* cancel = static_cast<const CancelToken*>(ptr);
     return !(cancel && cancel->cancelled());
@@ -178,6 +202,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     // triangles such as walls and floors: 2.4x the sample rate on the Cornell box.
     m_top = EmbreeScene(rtcNewScene(m_device.get()));
     rtcSetSceneBuildQuality(m_top.get(), RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneFlags(m_top.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneProgressMonitorFunction(m_top.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
     m_shading.resize(mesh_count);
     std::vector<int32_t> mesh_scene(mesh_count, -1);
@@ -213,6 +238,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
                 m_shading[m] = make_shading(m, nullptr);
                 EmbreeScene s(rtcNewScene(m_device.get()));
                 rtcSetSceneBuildQuality(s.get(), RTC_BUILD_QUALITY_HIGH);
+                rtcSetSceneFlags(s.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
                 rtcSetSceneProgressMonitorFunction(s.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
                 RTCGeometry g = make_geometry(m, Affine());
                 rtcAttachGeometry(s.get(), g);
@@ -263,9 +289,9 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     m_lights.finalize(m_radius);
 }
 
-bool Scene::intersect(const Ray& ray, SurfaceHit* hit) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip) const {
+    SkipContext context;
+    init_context(&context, skip, {});
     RTCRayHit rh;
     rh.ray.org_x = ray.o.x;
     rh.ray.org_y = ray.o.y;
@@ -281,7 +307,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit) const {
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(m_top.get(), &context, &rh);
+    rtcIntersect1(m_top.get(), &context.context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
     const bool via_instance = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
@@ -307,14 +333,16 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit) const {
         }
     }
     hit->material = s.material[prim];
+    hit->primitive = {rh.hit.geomID, prim, rh.hit.instID[0]};
     const int32_t rank = s.emissive_rank[prim];
     hit->light = (rank >= 0 && pl.light_base >= 0) ? pl.light_base + rank : -1;
     return true;
 }
 
-bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from,
+                     const PrimitiveRef& skip_to) const {
+    SkipContext context;
+    init_context(&context, skip_from, skip_to);
     RTCRay r;
     r.org_x = o.x;
     r.org_y = o.y;
@@ -328,7 +356,7 @@ bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax) const {
     r.mask = 0xFFFFFFFFu;
     r.id = 0;
     r.flags = 0;
-    rtcOccluded1(m_top.get(), &context, &r);
+    rtcOccluded1(m_top.get(), &context.context, &r);
     return r.tfar < 0.f;  // Embree sets tfar = −inf on a hit
 }
 

@@ -37,10 +37,12 @@ public:
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
-    /// Closest surface hit along the ray within (ray.tmin, ray.tmax).
-    bool intersect(const Ray& ray, SurfaceHit* hit) const;
-    /// True if any surface lies along o + t·d for t in (0, tmax).
-    bool occluded(const Vec3& o, const Vec3& d, float tmax) const;
+    /// Closest surface hit along the ray within (ray.tmin, ray.tmax), ignoring the triangle `skip` (the one
+    /// the ray leaves from: with the scale-relative origin offset this removes self-intersection).
+    bool intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip = {}) const;
+    /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the triangles at both ends.
+    bool occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from = {},
+                  const PrimitiveRef& skip_to = {}) const;
     /// Closest emitting side of an area light along the ray before tmax: its index and distance.
     bool intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t) const;
 

@@ -7,6 +7,15 @@
 
 namespace candela {
 
+/// Identifies the triangle a ray hit (Embree's ids), so a ray leaving it can skip it (robustness.md §1.2).
+struct PrimitiveRef {
+    static constexpr uint32_t k_none = 0xFFFFFFFFu;  // RTC_INVALID_GEOMETRY_ID
+    uint32_t geom = k_none, prim = k_none, inst = k_none;
+
+    bool valid() const { return geom != k_none; }
+    bool operator==(const PrimitiveRef& o) const { return geom == o.geom && prim == o.prim && inst == o.inst; }
+};
+
 struct SurfaceHit {
     float t = 0.f;
     Vec3 p;              // world (camera-relative) position
@@ -14,6 +23,7 @@ struct SurfaceHit {
     Vec3 ns;             // unit shading normal, on the same side as ng
     uint32_t material = 0;
     int32_t light = -1;  // index in the LightSet if the triangle emits, else −1
+    PrimitiveRef primitive;  // the triangle hit
 };
 
 }  // namespace candela
