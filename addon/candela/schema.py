@@ -10,6 +10,13 @@ MATERIAL_COLUMNS = ("base_r", "base_g", "base_b", "emission_r", "emission_g", "e
 LIGHT_COLUMNS = ("strength_r", "strength_g", "strength_b", "pos_x", "pos_y", "pos_z", "dir_x", "dir_y", "dir_z",
                  "u_x", "u_y", "u_z", "v_x", "v_y", "v_z", "radius", "spot_size", "spot_blend", "angle", "shape")
 MATERIAL_TYPES = {"DIFFUSE": 0}
+CLOSURE_COLUMNS = ("weight_r", "weight_g", "weight_b", "color_r", "color_g", "color_b", "roughness", "anisotropy",
+                   "ior", "distribution", "metallic", "specular", "specular_tint", "sheen", "sheen_tint", "clearcoat",
+                   "clearcoat_roughness", "transmission", "transmission_roughness", "subsurface", "subsurface_r",
+                   "subsurface_g", "subsurface_b")
+CLOSURE_TYPES = {"DIFFUSE": 0, "GLOSSY": 1, "GLASS": 2, "REFRACTION": 3, "TRANSLUCENT": 4, "TRANSPARENT": 5,
+                 "PRINCIPLED": 6}
+DISTRIBUTIONS = {"GGX": 0, "BECKMANN": 1}
 LIGHT_TYPES = {"POINT": 0, "SPOT": 1, "SUN": 2, "AREA": 3}
 INTEGRATORS = ("PATH",)
 
@@ -21,6 +28,14 @@ def _cap(key, fallback):
 
 def material_columns():
     return tuple(_cap("material_columns", MATERIAL_COLUMNS))
+
+
+def closure_columns():
+    return tuple(_cap("closure_columns", CLOSURE_COLUMNS))
+
+
+def closure_types():
+    return dict(_cap("closure_types", CLOSURE_TYPES))
 
 
 def light_columns():

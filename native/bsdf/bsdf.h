@@ -1,24 +1,204 @@
-// BSDFs: a closed family of value types behind std::variant. All directions are in the local shading
-// frame (z = shading normal, flipped to the side of wo), so a BSDF never sees world space.
-// f() excludes the cosine; sample() returns f, the sampled wi and its solid-angle pdf.
+// A BSDF is Cycles' weighted closure list: up to k_max_lobes {lobe, colour weight} pairs. Mix Shader
+// scales weights (mix), Add Shader concatenates (add). All directions are in the local shading frame
+// (z = shading normal flipped to the side of wo), so a BSDF never sees world space.
+//   f(wo, wi)   = Σ_i weight_i·f_i(wo, wi)                     (cosine excluded)
+//   pdf(wo, wi) = Σ_i p_i·pdf_i(wo, wi),  p_i ∝ luminance(weight_i)·albedo_i(wo)
+//   sample: one dimension (uc) picks lobe i with probability p_i and is rescaled for the lobe's own
+//   choice; a non-delta result is re-evaluated as the full mixture (f, pdf) — exactly pdf() — so MIS
+//   sees the density sample() used; a delta result keeps weight_i·f_i and the discrete p_i·P_i.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <variant>
 
-#include "bsdf/lambert.h"
+#include "bsdf/closures.h"
 
 namespace candela {
 
-using Bsdf = std::variant<LambertBsdf>;
+using BsdfLobe = std::variant<LambertBsdf, OrenNayarBsdf, TranslucentBsdf, TransparentBsdf, MicrofacetReflection,
+                              MicrofacetDielectric, PrincipledDiffuseBsdf, PrincipledSheenBsdf, ClearcoatBsdf>;
 
-inline Color bsdf_f(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
-    return std::visit([&](const auto& x) { return x.f(wo, wi); }, b);
+struct WeightedLobe {
+    BsdfLobe lobe;
+    Color weight{1.f};
+};
+
+class Bsdf {
+public:
+    static constexpr int k_max_lobes = 8;
+
+    Bsdf() = default;
+    /// A single lobe (implicit, so `Bsdf b = LambertBsdf{}` keeps working).
+    template <typename L, typename = std::enable_if_t<std::is_constructible_v<BsdfLobe, L>>>
+    Bsdf(const L& lobe, Color weight = Color(1.f)) {  // NOLINT(google-explicit-constructor)
+        add(lobe, weight);
+    }
+
+    /// Appends a lobe; a black weight is skipped, and like Cycles' closure limit a lobe beyond capacity
+    /// is dropped (returns false).
+    bool add(const BsdfLobe& lobe, Color weight) {
+        if (is_black(weight) || !(max_component(weight) > 0.f) || !is_finite(weight)) return true;
+        if (m_count >= k_max_lobes) return false;
+        m_lobes[size_t(m_count++)] = WeightedLobe{lobe, vmax(weight, Color(0.f))};
+        return true;
+    }
+    void scale(Color s) {
+        for (int i = 0; i < m_count; ++i) m_lobes[size_t(i)].weight *= s;
+    }
+
+    int size() const { return m_count; }
+    bool empty() const { return m_count == 0; }
+    const WeightedLobe& operator[](int i) const { return m_lobes[size_t(i)]; }
+
+    /// Union of the lobes' flags.
+    uint32_t flags() const {
+        uint32_t fl = 0;
+        for (int i = 0; i < m_count; ++i) fl |= std::visit([](const auto& l) { return l.flags(); }, m_lobes[size_t(i)].lobe);
+        return fl;
+    }
+    /// True if every lobe is a delta distribution (NEE is pointless); false for an empty BSDF.
+    bool is_delta() const {
+        if (m_count == 0) return false;
+        for (int i = 0; i < m_count; ++i)
+            if (!(std::visit([](const auto& l) { return l.flags(); }, m_lobes[size_t(i)].lobe) & k_bsdf_specular))
+                return false;
+        return true;
+    }
+    bool has_non_delta() const { return m_count > 0 && !is_delta(); }
+
+    Color f(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
+        Color sum(0.f);
+        for (int i = 0; i < m_count; ++i) {
+            const WeightedLobe& wl = m_lobes[size_t(i)];
+            sum += wl.weight * std::visit([&](const auto& l) { return l.f(wo, wi, mode); }, wl.lobe);
+        }
+        return sum;
+    }
+
+    float pdf(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
+        std::array<float, k_max_lobes> p;
+        if (!selection(wo, p)) return 0.f;
+        float sum = 0.f;
+        for (int i = 0; i < m_count; ++i)
+            if (p[size_t(i)] > 0.f)
+                sum += p[size_t(i)] * std::visit([&](const auto& l) { return l.pdf(wo, wi, mode); }, m_lobes[size_t(i)].lobe);
+        return sum;
+    }
+
+    BsdfSample sample(const Vec3& wo, Vec2 u, float uc, TransportMode mode = TransportMode::Radiance) const {
+        std::array<float, k_max_lobes> p;
+        if (!selection(wo, p)) return {};
+        // Pick lobe i by uc and rescale uc to [0, 1) for the lobe's own discrete choice.
+        int chosen = -1;
+        float cdf = 0.f;
+        for (int i = 0; i < m_count; ++i) {
+            if (p[size_t(i)] <= 0.f) continue;
+            chosen = i;
+            if (uc < cdf + p[size_t(i)]) break;
+            cdf += p[size_t(i)];
+        }
+        if (chosen < 0) return {};
+        const float p_chosen = p[size_t(chosen)];
+        const float uc_lobe = std::fmin(std::fmax((uc - cdf) / p_chosen, 0.f), k_one_minus_epsilon);
+        const WeightedLobe& wl = m_lobes[size_t(chosen)];
+        BsdfSample s = std::visit([&](const auto& l) { return l.sample(wo, u, uc_lobe, mode); }, wl.lobe);
+        if (!s.valid()) return {};
+        if (s.is_delta()) {
+            s.f *= wl.weight;
+            s.pdf *= p_chosen;
+            return s;
+        }
+        s.f = f(wo, s.wi, mode);
+        float pdf_sum = 0.f;
+        for (int i = 0; i < m_count; ++i)
+            if (p[size_t(i)] > 0.f)
+                pdf_sum += p[size_t(i)] * (i == chosen ? s.pdf : std::visit([&](const auto& l) { return l.pdf(wo, s.wi, mode); },
+                                                                            m_lobes[size_t(i)].lobe));
+        s.pdf = pdf_sum;
+        if (!(s.pdf > 0.f) || !std::isfinite(s.pdf) || !is_finite(s.f)) return {};
+        return s;
+    }
+
+    /// Lobe selection probabilities p_i (false if no lobe can be chosen).
+    bool selection(const Vec3& wo, std::array<float, k_max_lobes>& p) const {
+        float total = 0.f;
+        for (int i = 0; i < m_count; ++i) {
+            const WeightedLobe& wl = m_lobes[size_t(i)];
+            const float a = std::visit([&](const auto& l) { return l.albedo(wo); }, wl.lobe);
+            const float w = luminance(wl.weight) * std::fmax(a, 0.f);
+            p[size_t(i)] = std::isfinite(w) ? w : 0.f;
+            total += p[size_t(i)];
+        }
+        if (!(total > 0.f)) return false;
+        for (int i = 0; i < m_count; ++i) p[size_t(i)] /= total;
+        return true;
+    }
+
+private:
+    std::array<WeightedLobe, k_max_lobes> m_lobes{};
+    int m_count = 0;
+};
+
+/// Mix Shader: (1 − fac)·a + fac·b (fac clamped to [0, 1]).
+inline Bsdf mix(const Bsdf& a, const Bsdf& b, float fac) {
+    fac = clamp(fac, 0.f, 1.f);
+    Bsdf out;
+    for (int i = 0; i < a.size(); ++i) out.add(a[i].lobe, a[i].weight * (1.f - fac));
+    for (int i = 0; i < b.size(); ++i) out.add(b[i].lobe, b[i].weight * fac);
+    return out;
 }
-inline float bsdf_pdf(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
-    return std::visit([&](const auto& x) { return x.pdf(wo, wi); }, b);
+/// Add Shader: the concatenation of both lists.
+inline Bsdf add(const Bsdf& a, const Bsdf& b) {
+    Bsdf out = a;
+    for (int i = 0; i < b.size(); ++i) out.add(b[i].lobe, b[i].weight);
+    return out;
 }
-inline BsdfSample bsdf_sample(const Bsdf& b, const Vec3& wo, Vec2 u) {
-    return std::visit([&](const auto& x) { return x.sample(wo, u); }, b);
+
+/// Principled BSDF v1 inputs (Cycles 3.4 defaults). Subsurface is approximated by mixing the subsurface
+/// colour into the diffuse colour (no BSSRDF); the distribution is GGX (multiscatter GGX is not implemented).
+struct PrincipledParams {
+    Color base_color{0.8f};
+    float subsurface = 0.f;
+    Color subsurface_color{0.8f, 0.8f, 0.8f};
+    float metallic = 0.f;
+    float specular = 0.5f;
+    float specular_tint = 0.f;
+    float roughness = 0.5f;
+    float anisotropic = 0.f;
+    float sheen = 0.f;
+    float sheen_tint = 0.5f;
+    float clearcoat = 0.f;
+    float clearcoat_roughness = 0.03f;
+    float ior = 1.45f;
+    float transmission = 0.f;
+    float transmission_roughness = 0.f;  // not yet used: the glass lobe has one roughness
+    bool backfacing = false;  // the path arrives on the back face: the glass sees 1/ior
+};
+
+/// The closure list Cycles 3.4's svm/closure.h builds for Principled v1 (see blender-conventions §7.1).
+Bsdf principled_bsdf(const PrincipledParams& p);
+
+/// Glass node (Cycles: GGX/Beckmann/Sharp glass; roughness² = α). Refraction node: refraction_only.
+inline Bsdf glass_bsdf(Color color, float roughness, float ior, bool backfacing,
+                       MicrofacetDistribution d = MicrofacetDistribution::GGX, bool refraction_only = false) {
+    const float a = clamp(roughness, 0.f, 1.f) * clamp(roughness, 0.f, 1.f);
+    const float i = std::fmax(ior, 1e-5f);
+    MicrofacetDielectric g{Microfacet{d, a, a}, backfacing ? 1.f / i : i, Color(1.f), Color(1.f), refraction_only};
+    return Bsdf(g, color);
+}
+
+// Free-function interface used by the integrators. `uc` picks the lobe; the default 0.5 is only for
+// single-lobe callers (it would bias a multi-lobe BSDF).
+inline Color bsdf_f(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) {
+    return b.f(wo, wi, mode);
+}
+inline float bsdf_pdf(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) {
+    return b.pdf(wo, wi, mode);
+}
+inline BsdfSample bsdf_sample(const Bsdf& b, const Vec3& wo, Vec2 u, float uc = 0.5f,
+                              TransportMode mode = TransportMode::Radiance) {
+    return b.sample(wo, u, uc, mode);
 }
 
 }  // namespace candela

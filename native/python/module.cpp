@@ -18,7 +18,7 @@ using namespace candela;
 
 namespace {
 
-constexpr int k_abi_version = 1;
+constexpr int k_abi_version = 2;  // 2: closure table
 
 template <typename T>
 void add_array(SceneArrays& arrays, const std::string& key, ElemType type, const py::handle& value) {
@@ -93,12 +93,16 @@ py::dict capabilities() {
     d["samplers"] = sampler_names();
     d["pixel_filters"] = PixelFilter::names();
     d["material_columns"] = material_columns();
+    d["closure_columns"] = closure_columns();
     d["light_columns"] = light_columns();
     py::dict light_types, material_types;
     for (size_t i = 0; i < light_type_names().size(); ++i) light_types[py::str(light_type_names()[i])] = i;
     for (size_t i = 0; i < material_type_names().size(); ++i) material_types[py::str(material_type_names()[i])] = i;
+    py::dict closure_types;
+    for (size_t i = 0; i < closure_type_names().size(); ++i) closure_types[py::str(closure_type_names()[i])] = i;
     d["light_types"] = light_types;
     d["material_types"] = material_types;
+    d["closure_types"] = closure_types;
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;

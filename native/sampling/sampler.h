@@ -3,7 +3,7 @@
 // dimension), so images never depend on the thread count, the tile order or what was asked before.
 //
 // Dimensions are named (Dim): the camera uses Filter (2-D) and Lens (2-D, reserved), every bounce uses
-// LightSelect (1-D), Light (2-D), Bsdf (2-D) and Roulette (1-D). dimension_index() maps a name and a
+// LightSelect (1-D), Light (2-D), Bsdf (2-D), Roulette (1-D) and BsdfLobe (1-D). dimension_index() maps a name and a
 // bounce to a fixed coordinate index of the sample vector; a 2-D request at index d covers d and d + 1.
 // A 2-D request is one 2-D pattern (a √N×√N jittered grid, an N-rooks pair, a Sobol (0,2)-sequence pair…),
 // never two unrelated 1-D patterns.
@@ -45,9 +45,10 @@ enum class Dim : uint32_t {
     Light = 5,        // 2-D per bounce: point on that light
     Bsdf = 7,         // 2-D per bounce: BSDF direction
     Roulette = 9,     // 1-D per bounce: Russian roulette
+    BsdfLobe = 10,    // 1-D per bounce: which lobe of a multi-lobe BSDF is sampled
 };
 inline constexpr uint32_t k_camera_dimensions = 4;
-inline constexpr uint32_t k_bounce_dimensions = 6;
+inline constexpr uint32_t k_bounce_dimensions = 7;
 /// Halton and Hammersley use radical inverses below this dimension, independent values from here on.
 inline constexpr uint32_t k_max_radical_inverse_dims = 256;
 
@@ -164,7 +165,7 @@ inline Vec2 get_2d(const Sampler& s, Dim d, int bounce = 0) { return sample_2d_a
 inline Vec2 get_pixel_2d(const Sampler& s) { return get_2d(s, Dim::Filter); }
 
 /// Sequential interface: successive dimensions from k_camera_dimensions on (the same layout as the named
-/// per-bounce dimensions when drawn in the order LightSelect, Light, Bsdf, Roulette).
+/// per-bounce dimensions when drawn in the order LightSelect, Light, Bsdf, Roulette, BsdfLobe).
 inline float get_1d(Sampler& s) {
     return std::visit([](auto& v) { return v.sample_1d(v.take_dims(1)); }, s);
 }

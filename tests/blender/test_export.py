@@ -27,6 +27,9 @@ SCHEMA = {   # key: (dtype, trailing shape)
     "lights": (np.float32, (len(schema.light_columns()),)),
     "camera_to_world": (np.float32, (4, 4)),
     "world_color": (np.float32, (3,)),
+    "closure_material": (np.uint32, ()),
+    "closure_type": (np.uint32, ()),
+    "closure_params": (np.float32, (len(schema.closure_columns()),)),
 }
 
 
@@ -74,8 +77,8 @@ def test_unsupported_node_warns_once_and_falls_back():
     mat = bpy.data.materials.new("Shiny")
     mat.use_nodes = True
     nodes = mat.node_tree.nodes
-    glossy = nodes.new("ShaderNodeBsdfGlossy")
-    mat.node_tree.links.new(glossy.outputs[0], nodes["Material Output"].inputs["Surface"])
+    toon = nodes.new("ShaderNodeBsdfToon")
+    mat.node_tree.links.new(toon.outputs[0], nodes["Material Output"].inputs["Surface"])
     mat.diffuse_color = (0.1, 0.2, 0.3, 1.0)
     for i in range(3):   # three objects, one material: one warning
         ob = scenes.link(scene, bpy.data.objects.new(f"S{i}", scenes.cube_mesh(f"S{i}")))
@@ -83,7 +86,7 @@ def test_unsupported_node_warns_once_and_falls_back():
     warnings = Warnings()
     a = export(scene, warnings)
     hits = [m for m in warnings.messages if "Shiny" in m]
-    assert len(hits) == 1 and "Glossy" in hits[0], warnings.messages
+    assert len(hits) == 1 and "Toon" in hits[0], warnings.messages
     cols = schema.material_columns()
     base = a["materials"][:, [cols.index("base_r"), cols.index("base_g"), cols.index("base_b")]]
     assert np.any(np.all(np.isclose(base, (0.1, 0.2, 0.3)), axis=1))
@@ -209,3 +212,47 @@ def test_dump_operator(tmp_path):
     assert params["width"] == 32 and params["samples"] == 8
     for key, (dtype, _) in SCHEMA.items():
         assert np.load(tmp_path / f"{key}.npy").dtype == dtype, key
+
+
+def test_mix_and_add_shaders_become_weighted_closures():
+    """Mix Shader(fac 0.25) of Diffuse and (Glossy + Emission): weights 0.75 / 0.25, emission scaled by 0.25."""
+    scene = scenes.tiny_scene()
+    mat = bpy.data.materials.new("Layered")
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.25
+    diffuse = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (0.2, 0.4, 0.6, 1.0)
+    glossy = nt.nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = "BECKMANN"
+    glossy.inputs["Roughness"].default_value = 0.3
+    add = nt.nodes.new("ShaderNodeAddShader")
+    emission = nt.nodes.new("ShaderNodeEmission")
+    emission.inputs["Strength"].default_value = 8.0
+    nt.links.new(diffuse.outputs[0], mix.inputs[1])
+    nt.links.new(glossy.outputs[0], add.inputs[0])
+    nt.links.new(emission.outputs[0], add.inputs[1])
+    nt.links.new(add.outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], out.inputs["Surface"])
+    ob = scenes.link(scene, bpy.data.objects.new("Layered", scenes.cube_mesh("Layered")))
+    ob.data.materials.append(mat)
+    warnings = Warnings()
+    a = export(scene, warnings)
+    assert not [m for m in warnings.messages if "Layered" in m], warnings.messages
+    types, cols = schema.closure_types(), schema.closure_columns()
+    row = int(np.flatnonzero([np.allclose(r[cols.index("color_r"):cols.index("color_r") + 3], (0.2, 0.4, 0.6))
+                              for r in a["closure_params"]])[0])
+    material = a["closure_material"][row]
+    mine = np.flatnonzero(a["closure_material"] == material)
+    kinds = sorted(int(a["closure_type"][i]) for i in mine)
+    assert kinds == sorted([types["DIFFUSE"], types["GLOSSY"]])
+    weights = {int(a["closure_type"][i]): a["closure_params"][i][cols.index("weight_r")] for i in mine}
+    assert weights[types["DIFFUSE"]] == pytest.approx(0.75) and weights[types["GLOSSY"]] == pytest.approx(0.25)
+    glossy_row = a["closure_params"][[i for i in mine if a["closure_type"][i] == types["GLOSSY"]][0]]
+    assert glossy_row[cols.index("roughness")] == pytest.approx(0.3)
+    assert glossy_row[cols.index("distribution")] == schema.DISTRIBUTIONS["BECKMANN"]
+    emission_cols = [schema.material_columns().index(f"emission_{c}") for c in "rgb"]
+    assert a["materials"][material][emission_cols] == pytest.approx([2.0, 2.0, 2.0])  # 0.25 · 8

@@ -144,8 +144,9 @@ TEST(Sampler, NamedDimensionsAreFixedIndices) {
     EXPECT_EQ(dimension_index(Dim::Light, 0), 5u);
     EXPECT_EQ(dimension_index(Dim::Bsdf, 0), 7u);
     EXPECT_EQ(dimension_index(Dim::Roulette, 0), 9u);
-    EXPECT_EQ(dimension_index(Dim::LightSelect, 1), 10u);
-    EXPECT_EQ(dimension_index(Dim::Roulette, 63), 9u + 6u * 63u);
+    EXPECT_EQ(dimension_index(Dim::BsdfLobe, 0), 10u);
+    EXPECT_EQ(dimension_index(Dim::LightSelect, 1), 11u);
+    EXPECT_EQ(dimension_index(Dim::Roulette, 63), 9u + 7u * 63u);
 }
 
 // The sequential interface walks the same dimensions as the named one.
@@ -156,13 +157,14 @@ TEST(Sampler, SequentialMatchesNamedDimensions) {
         for (int bounce = 0; bounce < 50; ++bounce) {
             const float a = get_1d(s);
             const Vec2 b = get_2d(s), c = get_2d(s);
-            const float d = get_1d(s);
+            const float d = get_1d(s), e = get_1d(s);
             ASSERT_EQ(a, get_1d(s, Dim::LightSelect, bounce)) << name;
             ASSERT_EQ(b.x, get_2d(s, Dim::Light, bounce).x) << name;
             ASSERT_EQ(b.y, get_2d(s, Dim::Light, bounce).y) << name;
             ASSERT_EQ(c.x, get_2d(s, Dim::Bsdf, bounce).x) << name;
             ASSERT_EQ(c.y, get_2d(s, Dim::Bsdf, bounce).y) << name;
             ASSERT_EQ(d, get_1d(s, Dim::Roulette, bounce)) << name;
+            ASSERT_EQ(e, get_1d(s, Dim::BsdfLobe, bounce)) << name;
         }
     }
 }

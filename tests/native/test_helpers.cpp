@@ -1,7 +1,9 @@
 #include "test_helpers.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "bsdf/material.h"
 #include "core/math.h"
 #include "session/session.h"
 
@@ -11,6 +13,22 @@ uint32_t MeshBuilder::add_material(Color base, Color emission) {
     material_type.push_back(0);
     for (float v : {base.x, base.y, base.z, emission.x, emission.y, emission.z}) materials.push_back(v);
     return uint32_t(material_type.size() - 1);
+}
+
+void MeshBuilder::add_closure(uint32_t material, const std::string& type,
+                              const std::vector<std::pair<std::string, float>>& values) {
+    const auto& columns = closure_columns();
+    std::vector<float> row(columns.size(), 0.f);
+    auto set = [&](const std::string& name, float v) {
+        for (size_t c = 0; c < columns.size(); ++c)
+            if (columns[c] == name) row[c] = v;
+    };
+    for (const char* w : {"weight_r", "weight_g", "weight_b"}) set(w, 1.f);
+    for (const auto& [name, v] : values) set(name, v);
+    const auto& names = closure_type_names();
+    closure_type.push_back(uint32_t(std::find(names.begin(), names.end(), type) - names.begin()));
+    closure_material.push_back(material);
+    closure_params.insert(closure_params.end(), row.begin(), row.end());
 }
 
 uint32_t MeshBuilder::add_sphere(float radius, int segments, int rings, uint32_t material) {
@@ -87,6 +105,12 @@ SceneArrays MeshBuilder::arrays(const float* camera_rows16) const {
         a.set("lights", ElemType::F32, {light_type.size(), 20}, lights.data());
     }
     a.set("camera_to_world", ElemType::F32, {4, 4}, camera_rows16 ? camera_rows16 : identity);
+    if (!closure_type.empty()) {
+        a.set("closure_material", ElemType::U32, {closure_material.size()}, closure_material.data());
+        a.set("closure_type", ElemType::U32, {closure_type.size()}, closure_type.data());
+        a.set("closure_params", ElemType::F32, {closure_type.size(), closure_columns().size()}, closure_params.data());
+    }
+    if (!world_color.empty()) a.set("world_color", ElemType::F32, {3}, world_color.data());
     return a;
 }
 

@@ -20,10 +20,15 @@ struct MeshBuilder {
     std::vector<float> instance_transform;
     std::vector<uint32_t> material_type;
     std::vector<float> materials;  // rows of 6
+    std::vector<uint32_t> closure_material, closure_type;
+    std::vector<float> closure_params;  // rows of closure_columns()
+    std::vector<float> world_color;     // empty = black
     std::vector<uint32_t> light_type;
     std::vector<float> lights;  // rows of 20
 
     uint32_t add_material(Color base, Color emission);
+    /// Appends a closure to `material`: `values` maps closure column names to values (weight 1 by default).
+    void add_closure(uint32_t material, const std::string& type, const std::vector<std::pair<std::string, float>>& values);
     /// UV sphere (segments around, rings pole to pole) as one mesh; returns the mesh index.
     uint32_t add_sphere(float radius, int segments, int rings, uint32_t material);
     /// Axis-aligned quad in the z = h plane spanning [x0, x1] × [y0, y1]; returns the mesh index.

@@ -29,6 +29,7 @@ Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
     Ray ray = camera_ray;
     float prev_bsdf_pdf = 0.f;  // solid-angle pdf of the BSDF sample that produced `ray`
     bool prev_delta = true;     // camera rays and delta scatters see emitters with weight 1
+    float eta_scale = 1.f;      // Π η² over refractions so far (Russian roulette only)
     *alpha = 1.f;
 
     for (int bounce = 0;; ++bounce) {
@@ -80,31 +81,35 @@ Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
         // Local shading frame on the side the path arrives from (surfaces are two-sided).
         const Vec3 wo = -ray.d;
         Vec3 ng = hit.ng, ns = hit.ns;
-        if (dot(wo, ng) < 0.f) {
+        const bool backfacing = dot(wo, ng) < 0.f;  // arriving against the winding normal (glass: from inside)
+        if (backfacing) {
             ng = -ng;
             ns = -ns;
         }
         const Frame frame(dot(wo, ns) > 0.f ? ns : ng);  // a shading normal facing away: fall back
         const Vec3 wo_local = frame.to_local(wo);
-        const Bsdf bsdf = material.bsdf();
+        const Bsdf& bsdf = material.bsdf(backfacing);
 
         // Named sample dimensions: each is the same sequence dimension for every sample of every pixel.
         const float u_select = get_1d(sampler, Dim::LightSelect, bounce);
         const Vec2 u_light = get_2d(sampler, Dim::Light, bounce);
         const Vec2 u_bsdf = get_2d(sampler, Dim::Bsdf, bounce);
         const float u_rr = get_1d(sampler, Dim::Roulette, bounce);
+        const float u_lobe = get_1d(sampler, Dim::BsdfLobe, bounce);
 
         // Next-event estimation.
-        if (has_nee) {
+        if (has_nee && !bsdf.is_delta()) {  // a purely specular BSDF gets its light from BSDF sampling
             float pmf;
             const uint32_t li = lights.select(u_select, &pmf);
             if (pmf > 0.f) {
                 const LightSample ls = light_sample_li(lights[li], {hit.p, ns}, u_light);
-                if (ls.valid() && dot(ls.wi, ng) > 0.f) {
-                    const Vec3 wi_local = frame.to_local(ls.wi);
+                const Vec3 wi_local = frame.to_local(ls.wi);
+                // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks).
+                const float cos_g = dot(ls.wi, ng);
+                if (ls.valid() && cos_g != 0.f && (cos_g > 0.f) == (wi_local.z > 0.f)) {
                     const Color f = bsdf_f(bsdf, wo_local, wi_local) * std::fabs(wi_local.z);
                     if (!is_black(f)) {
-                        const Vec3 origin = offset_ray_origin(hit.p, ng);
+                        const Vec3 origin = offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng);
                         const float tmax = std::isfinite(ls.dist) ? ls.dist * (1.f - 1e-4f) : k_inf;
                         ++stats.rays;
                         if (!m_scene.occluded(origin, ls.wi, tmax)) {
@@ -118,21 +123,25 @@ Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
         }
 
         // Continue the path by sampling the BSDF.
-        const BsdfSample bs = bsdf_sample(bsdf, wo_local, u_bsdf);
+        const BsdfSample bs = bsdf_sample(bsdf, wo_local, u_bsdf, u_lobe, TransportMode::Radiance);
         if (!bs.valid()) break;
         const Vec3 wi = frame.to_world(bs.wi);
-        if (dot(wi, ng) <= 0.f) break;  // would pass through the surface the BSDF reflects from: a leak
+        // The sampled side (reflection: +ng, transmission: −ng) must agree with the geometry: a leak else.
+        const float cos_g = dot(wi, ng);
+        if (bs.is_transmission() ? cos_g >= 0.f : cos_g <= 0.f) break;
         beta *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
         prev_bsdf_pdf = bs.pdf;
-        prev_delta = bs.is_delta;
+        prev_delta = bs.is_delta();
+        // Radiance mode scales β by 1/η² at each refraction; undo it for the roulette only (robustness §5).
+        if (bs.is_transmission()) eta_scale *= bs.eta * bs.eta;
 
         if (bounce + 1 >= m_settings.rr_start_bounce) {
-            const float survive = std::fmin(1.f, max_component(beta));
-            if (u_rr >= survive) break;
+            const float survive = std::fmin(1.f, max_component(beta) * eta_scale);
+            if (!(survive > 0.f) || u_rr >= survive) break;
             beta /= survive;
         }
         if (is_black(beta)) break;
-        ray.o = offset_ray_origin(hit.p, ng);
+        ray.o = offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng);
         ray.d = wi;
         ray.tmin = 0.f;
         ray.tmax = k_inf;
