@@ -34,6 +34,42 @@ def integrator_items():
     return items
 
 
+HEMISPHERE_SAMPLING = [
+    ("UNIFORM", "Uniform", "Continue paths in uniformly distributed directions over the hemisphere", 0),
+    ("COSINE", "Cosine", "Continue paths cosine-weighted over the hemisphere", 1),
+    ("BSDF", "BSDF", "Continue paths proportionally to the BSDF times the cosine (importance sampling)", 2),
+]
+LIGHT_SAMPLING = [
+    ("BSDF_ONLY", "BSDF Only", "Direct light only where continuation rays hit emitters (point, spot and sun "
+     "lights are still light-sampled: no ray can hit them)", 0),
+    ("LIGHT_ONLY", "Light Only", "Direct light only by next-event estimation (shadow rays to sampled lights)", 1),
+    ("MIS", "Multiple Importance", "Both, combined by multiple importance sampling", 2),
+]
+MIS_HEURISTICS = [
+    ("BALANCE", "Balance", "Balance heuristic (Veach 1997, eq. 9.12)", 0),
+    ("POWER", "Power", "Power heuristic with exponent 2 (Veach 1997, eq. 9.13)", 1),
+]
+LIGHT_PDFS = [
+    ("AREA", "Area", "Sample points uniformly on the emitter's area", 0),
+    ("SOLID_ANGLE", "Solid Angle", "Sample directions uniformly in the solid angle the emitter covers "
+     "(spherical triangles and rectangles), with area sampling for tiny and huge solid angles", 1),
+]
+LIGHT_SELECTIONS = [
+    ("ALL", "All", "Estimate every light at every vertex (one shadow ray per light)", 0),
+    ("UNIFORM", "Uniform", "Pick one light uniformly", 1),
+    ("AREA", "Area", "Pick one light in proportion to its emitting area", 2),
+    ("POWER", "Power", "Pick one light in proportion to its power", 3),
+    ("TREE", "Light Tree", "Pick one light by a light hierarchy with bounds and orientation cones "
+     "(favours nearby, facing, bright lights; scales to thousands of emitters)", 4),
+    ("WARD", "Ward", "Pick lights in proportion to their maximum possible contribution at the point (Ward 1991)", 5),
+]
+RR_MODES = [
+    ("OFF", "Off", "No Russian roulette: paths end at Max Bounces only", 0),
+    ("THROUGHPUT", "Throughput", "Survival probability from the path throughput", 1),
+    ("ALBEDO", "Albedo", "Survival probability from the surface's reflectance", 2),
+]
+
+
 class CandelaRenderSettings(bpy.types.PropertyGroup):
     samples: IntProperty(name="Samples", description="Samples per pixel", default=64, min=1, soft_max=4096)
     max_bounces: IntProperty(name="Max Bounces", description="Maximum path length; 0 = direct light only",
@@ -49,6 +85,24 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
     pixel_filter: EnumProperty(name="Pixel Filter", items=PIXEL_FILTERS, default="BLACKMAN_HARRIS")
     filter_width: FloatProperty(name="Filter Width", description="Pixel filter width in pixels", default=1.5,
                                 min=0.01, soft_max=10.0, subtype='PIXEL')
+    hemisphere_sampling: EnumProperty(name="Hemisphere Sampling", items=HEMISPHERE_SAMPLING, default="BSDF",
+                                      description="How continuation directions are drawn (delta lobes always "
+                                      "use the BSDF)")
+    light_sampling: EnumProperty(name="Light Sampling", items=LIGHT_SAMPLING, default="MIS",
+                                 description="Which estimators of direct light are used")
+    mis_heuristic: EnumProperty(name="MIS Heuristic", items=MIS_HEURISTICS, default="POWER")
+    light_pdf: EnumProperty(name="Light PDF", items=LIGHT_PDFS, default="SOLID_ANGLE",
+                            description="How a point on an area light or emissive triangle is chosen")
+    light_selection: EnumProperty(name="Light Selection", items=LIGHT_SELECTIONS, default="TREE",
+                                  description="How next-event estimation chooses among many lights")
+    light_samples: IntProperty(name="Light Samples", description="Shadow rays per path vertex (stratified)",
+                               default=1, min=1, max=256)
+    branching_factor: IntProperty(name="Branching Factor", description="Continuation rays at the first surface "
+                                  "(stochastic ray tracing); 1 is path tracing", default=1, min=1, max=256)
+    rr_mode: EnumProperty(name="Russian Roulette", items=RR_MODES, default="THROUGHPUT")
+    clamp_indirect: FloatProperty(name="Clamp Indirect", description="Clamp the brightest component of indirect "
+                                  "light contributions to this value; 0 = off. Biased: it removes fireflies by "
+                                  "removing energy", default=0.0, min=0.0, soft_max=100.0)
     time_limit: FloatProperty(
         name="Time Limit", description="Stop rendering after this many seconds (after export and scene build), "
         "even if not all samples are done; 0 = no limit. Renders then differ between machines", default=0.0,

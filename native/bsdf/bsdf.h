@@ -120,6 +120,16 @@ public:
         return s;
     }
 
+    /// Directional albedo estimate Σ weight_i·albedo_i(wo) (the lobes' own estimates; for roulette and choices).
+    Color albedo(const Vec3& wo) const {
+        Color sum(0.f);
+        for (int i = 0; i < m_count; ++i) {
+            const WeightedLobe& wl = m_lobes[size_t(i)];
+            sum += wl.weight * std::visit([&](const auto& l) { return l.albedo(wo); }, wl.lobe);
+        }
+        return sum;
+    }
+
     /// Lobe selection probabilities p_i (false if no lobe can be chosen).
     bool selection(const Vec3& wo, std::array<float, k_max_lobes>& p) const {
         float total = 0.f;

@@ -1,6 +1,9 @@
 // Blender area light (Cycles 3.4): a one-sided Lambertian emitter facing `normal` (the light's −Z),
 // radiance L = S/(4A) where A is the world-space area (object scale included; ellipse A = π/4·|u||v|).
-// Sampled uniformly by area (p_ω = d²/(A cos θ_l)); BSDF rays hit it analytically and are MIS-weighted.
+// `light_pdf = AREA` (the two-argument sample_li/pdf_li): uniform by area, p_ω = d²/(A cos θ_l).
+// `light_pdf = SOLID_ANGLE`: spherical-rectangle sampling (Ureña et al. 2013), p_ω = 1/S, with area sampling
+// for ellipses, non-orthogonal (sheared) edges, S ≤ 1e-4 sr and grazing views; pdf_li(ctx, ...) mirrors it.
+// BSDF rays hit the light analytically and are MIS-weighted.
 // Lights are not occluders: a ray passes through and continues to the next surface.
 #pragma once
 
@@ -8,6 +11,7 @@
 
 #include "core/math.h"
 #include "lights/light_sample.h"
+#include "lights/spherical_sampling.h"
 #include "sampling/warp.h"
 
 namespace candela {
@@ -47,6 +51,46 @@ struct AreaLight {
 
     /// Solid-angle pdf of sampling direction d that hits the light at distance t.
     float pdf_li(const Vec3& d, float t) const { return area_to_solid_angle(1.f / area, t * t, -dot(d, normal)); }
+
+    /// The spherical rectangle seen from p (valid only for rectangles whose edges are orthogonal).
+    SphericalRectangle spherical_rectangle(const Vec3& p) const {
+        return SphericalRectangle::make(p, center - u * 0.5f - v * 0.5f, u, v);
+    }
+    bool rectangular() const {
+        return !ellipse && std::fabs(dot(u, v)) <= 1e-4f * length(u) * length(v);
+    }
+
+    LightSample sample_li(const LightSampleContext& ctx, Vec2 s2, LightPdfMode mode) const {
+        if (mode == LightPdfMode::Area || !rectangular()) return sample_li(ctx, s2);
+        if (dot(ctx.p - center, normal) <= 0.f) return {};  // behind the emitting side (or in its plane)
+        const SphericalRectangle rect = spherical_rectangle(ctx.p);
+        if (!rect.usable()) return sample_li(ctx, s2);
+        LightSample s;
+        const Vec3 p = rect.sample_point(s2);
+        Vec3 w = p - ctx.p;
+        const float d2 = length_squared(w);
+        if (!(d2 > 0.f)) return s;
+        const float d = std::sqrt(d2);
+        w = w / d;
+        if (!(-dot(w, normal) > 0.f)) return s;
+        const float pdf = 1.f / rect.solid_angle();
+        if (!(pdf > 0.f) || !std::isfinite(pdf)) return s;
+        s.wi = w;
+        s.dist = d;
+        s.pdf = pdf;
+        s.Li = radiance;
+        return s;
+    }
+
+    /// Solid-angle pdf of direction d from ctx.p that hits the emitting side at distance t, in `mode`.
+    float pdf_li(const LightSampleContext& ctx, const Vec3& d, float t, LightPdfMode mode) const {
+        if (mode == LightPdfMode::Area || !rectangular()) return pdf_li(d, t);
+        if (dot(ctx.p - center, normal) <= 0.f) return 0.f;
+        const SphericalRectangle rect = spherical_rectangle(ctx.p);
+        if (!rect.usable()) return pdf_li(d, t);
+        const float pdf = 1.f / rect.solid_angle();
+        return std::isfinite(pdf) ? pdf : 0.f;
+    }
 
     float power() const { return k_pi * area * luminance(radiance); }
 };

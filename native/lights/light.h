@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -21,6 +22,39 @@ using Light = std::variant<PointLight, SunLight, AreaLight, TriangleLight, World
 
 inline LightSample light_sample_li(const Light& l, const LightSampleContext& ctx, Vec2 u) {
     return std::visit([&](const auto& x) { return x.sample_li(ctx, u); }, l);
+}
+/// Samples light `l` from ctx with the `light_pdf` mode (only emissive triangles and area lights depend on it).
+inline LightSample light_sample_li(const Light& l, const LightSampleContext& ctx, Vec2 u, LightPdfMode mode) {
+    return std::visit(
+        [&](const auto& x) -> LightSample {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>) return x.sample_li(ctx, u, mode);
+            else return x.sample_li(ctx, u);
+        },
+        l);
+}
+/// Solid-angle density with which light_sample_li(l, ctx, ·, mode) produces direction wi reaching the light at
+/// distance t (for MIS on BSDF-sampled hits). 0 for lights BSDF rays never hit (point, spot, sun).
+inline float light_pdf_li(const Light& l, const LightSampleContext& ctx, const Vec3& wi, float t, LightPdfMode mode) {
+    return std::visit(
+        [&](const auto& x) -> float {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>) return x.pdf_li(ctx, wi, t, mode);
+            else if constexpr (std::is_same_v<T, WorldLight>) return x.pdf_li(wi);
+            else return 0.f;
+        },
+        l);
+}
+/// Emitting area (world units): area lights and triangles; a point light with radius r its disk πr²; 0 for
+/// point, spot, sun and world (the AREA selection strategy substitutes a stand-in for those).
+inline float light_area(const Light& l) {
+    return std::visit(
+        [](const auto& x) -> float {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>) return x.area;
+            else return 0.f;
+        },
+        l);
 }
 inline float light_power(const Light& l) { return std::visit([](const auto& x) { return x.power(); }, l); }
 
@@ -43,6 +77,19 @@ public:
     bool empty() const { return m_lights.empty(); }
     const Light& operator[](size_t i) const { return m_lights[i]; }
 
+    /// The `light_pdf` mode of sample_li()/pdf_li() below (default SOLID_ANGLE). The mode-less
+    /// light_sample_li(light, ctx, u) and Light::pdf_li(d, t) stay AREA.
+    void set_pdf_mode(LightPdfMode mode) { m_pdf_mode = mode; }
+    LightPdfMode pdf_mode() const { return m_pdf_mode; }
+    LightSample sample_li(uint32_t i, const LightSampleContext& ctx, Vec2 u) const {
+        return light_sample_li(m_lights[i], ctx, u, m_pdf_mode);
+    }
+    /// MIS density for a BSDF ray from ctx.p (the previous vertex, the same point NEE sampled from) that reached
+    /// light i at distance t along wi.
+    float pdf_li(uint32_t i, const LightSampleContext& ctx, const Vec3& wi, float t) const {
+        return light_pdf_li(m_lights[i], ctx, wi, t, m_pdf_mode);
+    }
+
     /// Picks one light ∝ power: returns its index and probability.
     uint32_t select(float u, float* pmf) const {
         return static_cast<uint32_t>(m_selection.sample_discrete(u, pmf));
@@ -60,6 +107,7 @@ private:
     std::vector<uint32_t> m_area_lights;
     int m_world = -1;
     Distribution1D m_selection;
+    LightPdfMode m_pdf_mode = LightPdfMode::SolidAngle;
 };
 
 }  // namespace candela

@@ -6,6 +6,14 @@
 
 namespace candela {
 
+LightPdfMode parse_light_pdf_mode(const std::string& name) {
+    if (name == "AREA") return LightPdfMode::Area;
+    if (name == "SOLID_ANGLE") return LightPdfMode::SolidAngle;
+    throw InvalidScene("light_pdf '" + name + "' is unknown (AREA, SOLID_ANGLE)");
+}
+
+const char* light_pdf_mode_name(LightPdfMode mode) { return mode == LightPdfMode::Area ? "AREA" : "SOLID_ANGLE"; }
+
 const std::vector<std::string>& light_columns() {
     static const std::vector<std::string> cols = {
         "strength_r", "strength_g", "strength_b", "pos_x", "pos_y", "pos_z", "dir_x", "dir_y", "dir_z",

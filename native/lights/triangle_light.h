@@ -1,12 +1,14 @@
 // An emissive mesh triangle (Cycles: emission closure, both sides emit radiance L = strength·colour),
-// in world space, sampled uniformly by area: p_ω = d²/(A |cos θ_l|). (Spherical-triangle sampling by
-// solid angle is the `light_pdf = SOLID_ANGLE` option of the sampling toolbox.)
+// in world space. `light_pdf = AREA`: uniform by area, p_ω = d²/(A |cos θ_l|) (the two-argument
+// sample_li/pdf_li). `light_pdf = SOLID_ANGLE`: spherical-triangle sampling (Arvo 1995), p_ω = 1/Ω, used only
+// when 3e-4 < Ω < 6.22 sr as seen from the shading point, else area sampling; pdf_li(ctx, ...) mirrors it.
 #pragma once
 
 #include <cmath>
 
 #include "core/math.h"
 #include "lights/light_sample.h"
+#include "lights/spherical_sampling.h"
 #include "sampling/warp.h"
 
 namespace candela {
@@ -24,6 +26,37 @@ struct TriangleLight {
     }
 
     float pdf_li(const Vec3& d, float t) const { return area_to_solid_angle(1.f / area, t * t, std::fabs(dot(d, normal))); }
+
+    /// Solid angle seen from p, and whether SOLID_ANGLE mode samples it spherically from there.
+    bool uses_spherical_sampling(const Vec3& p, float* omega = nullptr) const {
+        const double sr = spherical_triangle_solid_angle(p, p0, p1, p2);
+        if (omega) *omega = float(sr);
+        return sr > k_min_spherical_triangle_sr && sr < k_max_spherical_triangle_sr;
+    }
+
+    LightSample sample_li(const LightSampleContext& ctx, Vec2 u, LightPdfMode mode) const {
+        if (mode == LightPdfMode::Area || !uses_spherical_sampling(ctx.p)) return sample_li(ctx, u);
+        LightSample s;
+        const SphericalSample ss = sample_spherical_triangle(ctx.p, p0, p1, p2, u);
+        if (!(ss.pdf > 0.f)) return s;
+        const float denom = dot(ss.w, normal);
+        const float t = dot(p0 - ctx.p, normal) / denom;
+        if (!(t > 0.f) || !std::isfinite(t)) return s;
+        s.wi = ss.w;
+        s.dist = t;
+        s.pdf = ss.pdf;
+        s.Li = radiance;
+        return s;
+    }
+
+    /// Solid-angle pdf of direction wi from ctx.p that hits the triangle at distance t, in `mode`.
+    float pdf_li(const LightSampleContext& ctx, const Vec3& wi, float t, LightPdfMode mode) const {
+        if (mode == LightPdfMode::Area) return pdf_li(wi, t);
+        const double sr = spherical_triangle_solid_angle(ctx.p, p0, p1, p2);
+        if (!(sr > k_min_spherical_triangle_sr && sr < k_max_spherical_triangle_sr)) return pdf_li(wi, t);
+        const float pdf = float(1.0 / sr);  // the expression sample_spherical_triangle() uses
+        return std::isfinite(pdf) ? pdf : 0.f;
+    }
 
     float power() const { return 2.f * k_pi * area * luminance(radiance); }  // two-sided
 };

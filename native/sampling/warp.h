@@ -33,6 +33,15 @@ inline Vec3 sample_cosine_hemisphere(Vec2 u) {
 }
 inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.f ? cos_theta * k_inv_pi : 0.f; }
 
+/// Uniform direction on the hemisphere about +z: pdf = 1/(2π).
+inline Vec3 sample_uniform_hemisphere(Vec2 u) {
+    const float z = u.x;
+    const float r = safe_sqrt(1.f - z * z);
+    const float phi = 2.f * k_pi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline constexpr float uniform_hemisphere_pdf() { return k_inv_two_pi; }
+
 /// Uniform direction on the unit sphere: pdf = 1/(4π).
 inline Vec3 sample_uniform_sphere(Vec2 u) {
     const float z = 1.f - 2.f * u.x;

@@ -256,3 +256,22 @@ def test_mix_and_add_shaders_become_weighted_closures():
     assert glossy_row[cols.index("distribution")] == schema.DISTRIBUTIONS["BECKMANN"]
     emission_cols = [schema.material_columns().index(f"emission_{c}") for c in "rgb"]
     assert a["materials"][material][emission_cols] == pytest.approx([2.0, 2.0, 2.0])  # 0.25 · 8
+
+
+def test_every_sampling_option_reaches_the_native_session():
+    """Each value of each sampling enum maps to a param the native side accepts (same identifiers)."""
+    from candela import native
+
+    scene = scenes.tiny_scene(width=8, height=6, samples=1)
+    camera = render_camera(scene)
+    arrays = export(scene)
+    settings = scene.candela
+    for prop in ("sampler", "hemisphere_sampling", "light_sampling", "mis_heuristic", "light_pdf",
+                 "light_selection", "rr_mode", "pixel_filter", "integrator"):
+        for item in settings.bl_rna.properties[prop].enum_items:
+            setattr(settings, prop, item.identifier)
+            params = to_native_params(scene, camera.data)
+            assert params[prop] == item.identifier
+            session = native.require().Session(arrays, params)   # raises ValueError on an unknown name
+            assert not [line for line in session.take_log() if "unknown render parameter" in line], prop
+        setattr(settings, prop, settings.bl_rna.properties[prop].default)

@@ -37,7 +37,33 @@ class CANDELA_RENDER_PT_light_paths(CandelaPanel, bpy.types.Panel):
         settings = context.scene.candela
         col = layout.column()
         col.prop(settings, "max_bounces")
-        col.prop(settings, "rr_start_bounce")
+        col.prop(settings, "rr_mode")
+        sub = col.column()
+        sub.active = settings.rr_mode != 'OFF'
+        sub.prop(settings, "rr_start_bounce")
+        col.prop(settings, "branching_factor")
+        col.prop(settings, "hemisphere_sampling")
+        col.prop(settings, "clamp_indirect")
+
+
+class CANDELA_RENDER_PT_light_sampling(CandelaPanel, bpy.types.Panel):
+    bl_context = "render"
+    bl_label = "Light Sampling"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.candela
+        col = layout.column()
+        col.prop(settings, "light_sampling")
+        sub = col.column()
+        sub.active = settings.light_sampling == 'MIS'
+        sub.prop(settings, "mis_heuristic")
+        col.prop(settings, "light_selection")
+        col.prop(settings, "light_pdf")
+        col.prop(settings, "light_samples")
 
 
 class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
@@ -58,4 +84,5 @@ class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
         col.prop(context.scene.render, "film_transparent", text="Transparent")
 
 
-classes = (CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_light_paths, CANDELA_RENDER_PT_film)
+classes = (CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_light_paths, CANDELA_RENDER_PT_light_sampling,
+           CANDELA_RENDER_PT_film)

@@ -1,15 +1,36 @@
-// Settings of the path tracer (plain struct, read once from params).
+// Settings of the path tracer (plain struct, read once from params). Names are the add-on's identifiers.
 #pragma once
+
+#include <string>
 
 #include "core/params.h"
 #include "integrators/pixel_sampling.h"
+#include "lights/light_sample.h"
 
 namespace candela {
 
+/// How the continuation direction is drawn for non-delta BSDFs (delta lobes are always sampled exactly).
+enum class HemisphereSampling { Uniform, Cosine, Bsdf };
+/// Which estimators of direct light run: BSDF sampling only (delta lights excepted: nothing can hit them),
+/// next-event estimation only, or both combined by multiple importance sampling.
+enum class LightSampling { BsdfOnly, LightOnly, Mis };
+enum class MisHeuristic { Balance, Power };
+/// Russian roulette: off (max_bounces only), survival by path throughput, or by the surface's albedo.
+enum class RouletteMode { Off, Throughput, Albedo };
+
 struct PathSettings {
     PixelSampling pixel;
-    int max_bounces = 12;      // 0 = direct lighting only
-    int rr_start_bounce = 3;   // Russian roulette from this bounce on
+    int max_bounces = 12;           // 0 = direct lighting only
+    int rr_start_bounce = 3;        // Russian roulette from this bounce on
+    RouletteMode rr_mode = RouletteMode::Throughput;
+    HemisphereSampling hemisphere_sampling = HemisphereSampling::Bsdf;
+    LightSampling light_sampling = LightSampling::Mis;
+    MisHeuristic mis_heuristic = MisHeuristic::Power;
+    LightPdfMode light_pdf = LightPdfMode::SolidAngle;  // how a point on an area-like emitter is drawn
+    std::string light_selection = "TREE";  // registry name of the light-selection strategy
+    int light_samples = 1;          // shadow rays per vertex (stratified)
+    int branching_factor = 1;       // continuation rays at the first surface (stochastic ray tracing)
+    float clamp_indirect = 0.f;     // > 0: clamp indirect contributions' max component (biased); 0 = off
 
     static PathSettings from_params(const Params& params);
 };

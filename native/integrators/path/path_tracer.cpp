@@ -5,42 +5,107 @@
 
 #include "core/frame.h"
 #include "core/math.h"
+#include "sampling/warp.h"
 #include "scene/ray_offset.h"
 
 namespace candela {
 
 namespace {
 
-/// Probability that next-event estimation would have produced direction d toward the given emitter.
-template <typename LightT>
-float nee_pdf(const LightSet& lights, uint32_t index, const LightT& light, const Vec3& d, float t) {
-    return lights.selection_pmf(index) * light.pdf_li(d, t);
+constexpr float k_inf = std::numeric_limits<float>::infinity();
+constexpr float k_golden = 0.6180339887498949f;
+
+/// MIS weight of strategy a against b (pdfs already scaled by their sample counts); a delta a weighs 1.
+float mis_weight(MisHeuristic h, float a, float b) {
+    if (std::isinf(a)) return 1.f;
+    if (h == MisHeuristic::Power) {
+        a *= a;
+        b *= b;
+    }
+    const float sum = a + b;
+    return sum > 0.f && std::isfinite(sum) ? a / sum : 0.f;
+}
+
+float frac(float x) { return x - std::floor(x); }
+
+/// The i-th of n stratified 2-D points: a rank-1 lattice (i/n, i·φ) rotated by u (Cranley–Patterson).
+Vec2 lattice_point(Vec2 u, int i, int n) {
+    if (n == 1) return u;
+    return {std::fmin(frac(u.x + float(i) / n), k_one_minus_epsilon),
+            std::fmin(frac(u.y + float(i) * k_golden), k_one_minus_epsilon)};
+}
+float stratum_1d(float u, int i, int n) { return n == 1 ? u : std::fmin((float(i) + u) / n, k_one_minus_epsilon); }
+
+/// Continuation direction by the chosen hemisphere strategy; delta or mixed-delta BSDFs always use their
+/// own sampling (a uniform or cosine direction can never hit a delta lobe).
+BsdfSample sample_continuation(HemisphereSampling mode, const Bsdf& bsdf, const Vec3& wo, Vec2 u, float uc) {
+    if (mode == HemisphereSampling::Bsdf || (bsdf.flags() & k_bsdf_specular)) return bsdf.sample(wo, u, uc);
+    const bool both_sides = (bsdf.flags() & k_bsdf_transmission) != 0;
+    BsdfSample s;
+    s.wi = mode == HemisphereSampling::Uniform ? sample_uniform_hemisphere(u) : sample_cosine_hemisphere(u);
+    if (s.wi.z <= 1e-7f) return {};
+    s.pdf = mode == HemisphereSampling::Uniform ? uniform_hemisphere_pdf() : cosine_hemisphere_pdf(s.wi.z);
+    if (both_sides) {
+        s.pdf *= 0.5f;
+        if (uc >= 0.5f) s.wi.z = -s.wi.z;
+    }
+    s.f = bsdf.f(wo, s.wi);
+    s.flags = (s.wi.z > 0.f ? k_bsdf_reflection : k_bsdf_transmission) | k_bsdf_diffuse;
+    return s;
+}
+
+/// The density sample_continuation draws wi with (for MIS).
+float continuation_pdf(HemisphereSampling mode, const Bsdf& bsdf, const Vec3& wo, const Vec3& wi) {
+    if (mode == HemisphereSampling::Bsdf || (bsdf.flags() & k_bsdf_specular)) return bsdf.pdf(wo, wi);
+    const bool both_sides = (bsdf.flags() & k_bsdf_transmission) != 0;
+    if (!both_sides && wi.z <= 0.f) return 0.f;
+    const float p = mode == HemisphereSampling::Uniform ? uniform_hemisphere_pdf() : cosine_hemisphere_pdf(std::fabs(wi.z));
+    return both_sides ? 0.5f * p : p;
 }
 
 }  // namespace
 
 Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha) const {
-    const LightSet& lights = m_scene.lights();
-    const bool has_nee = !lights.empty();
-    const auto& materials = m_scene.materials();
-    constexpr float k_inf = std::numeric_limits<float>::infinity();
-
-    Color L(0.f), beta(1.f);
-    Ray ray = camera_ray;
-    float prev_bsdf_pdf = 0.f;  // solid-angle pdf of the BSDF sample that produced `ray`
-    bool prev_delta = true;     // camera rays and delta scatters see emitters with weight 1
-    float eta_scale = 1.f;      // Π η² over refractions so far (Russian roulette only)
+    Color L(0.f);
     *alpha = 1.f;
+    trace(camera_ray, PathState{}, 0, sampler, stats, L, alpha);
+    return L;
+}
 
-    for (int bounce = 0;; ++bounce) {
+void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, PathStats& stats, Color& L,
+                       float* alpha) const {
+    const LightSet& lights = m_scene.lights();
+    const PathSettings& cfg = m_settings;
+    const int k = cfg.light_samples;
+    const bool nee_enabled = !lights.empty();
+    const auto& materials = m_scene.materials();
+
+    for (;; ++bounce) {
         SurfaceHit hit;
         ++stats.rays;
-        const bool found = m_scene.intersect(ray, &hit);
+        const bool found = m_scene.intersect(ray, &hit, st.from);
         const float t_surface = found ? hit.t : ray.tmax;
 
-        // MIS weight for emission found by the BSDF-sampled ray (1 for camera rays and delta scatters).
-        auto emission_weight = [&](float light_pdf) {
-            return prev_delta ? 1.f : power_heuristic(prev_bsdf_pdf, light_pdf);
+        // Emission found by this ray: MIS against light sampling (weight 1 after a camera ray or a delta
+        // scatter; 0 when only light sampling estimates direct light). Indirect light (found after at least
+        // one diffuse/glossy bounce from the first surface) may be clamped.
+        auto add_emission = [&](const Color& Le, float light_pdf) {
+            float w = 1.f;
+            if (!st.specular) {
+                if (cfg.light_sampling == LightSampling::LightOnly) w = light_pdf > 0.f ? 0.f : 1.f;
+                else if (cfg.light_sampling == LightSampling::Mis) w = mis_weight(cfg.mis_heuristic, st.bsdf_pdf, light_pdf);
+            }
+            Color c = st.beta * Le * w;
+            if (cfg.clamp_indirect > 0.f && bounce >= 2 && max_component(c) > cfg.clamp_indirect)
+                c *= cfg.clamp_indirect / max_component(c);
+            L += c;
+        };
+        // Density with which next-event estimation at the previous vertex would have produced this ray
+        // toward light `index` (k shadow rays; with BSDF_ONLY nothing but delta lights is light-sampled).
+        auto light_pdf = [&](uint32_t index, float t) {
+            if (cfg.light_sampling == LightSampling::BsdfOnly || st.specular) return 0.f;
+            return float(k) * m_light_sampler.nee_pmf(st.origin, index) *
+                   light_pdf_li(lights[index], st.origin, ray.d, t, cfg.light_pdf);
         };
 
         // Area lights are not occluders: any emitting side before the surface adds its radiance.
@@ -49,34 +114,24 @@ Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
             float tl;
             if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, t_surface, &li, &tl)) {
                 const auto& area = std::get<AreaLight>(lights[li]);
-                L += beta * area.radiance * emission_weight(nee_pdf(lights, li, area, ray.d, tl));
+                add_emission(area.radiance, light_pdf(li, tl));
             }
         }
 
         if (!found) {
-            if (const WorldLight* world = lights.world()) {
-                if (bounce == 0 && m_settings.pixel.film_transparent) {
-                    *alpha = 0.f;
-                } else {
-                    const float pdf = lights.selection_pmf(uint32_t(lights.world_light())) * world->pdf_li(ray.d);
-                    L += beta * world->Le(ray.d) * emission_weight(pdf);
-                }
-            } else if (bounce == 0 && m_settings.pixel.film_transparent) {
+            if (bounce == 0 && cfg.pixel.film_transparent) {
                 *alpha = 0.f;
+            } else if (const WorldLight* world = lights.world()) {
+                add_emission(world->Le(ray.d), light_pdf(uint32_t(lights.world_light()), k_inf));
             }
-            break;
+            return;
         }
 
         const Material& material = materials[hit.material];
         if (material.is_emissive()) {
-            float light_pdf = 0.f;
-            if (hit.light >= 0) {
-                const auto& tri = std::get<TriangleLight>(lights[uint32_t(hit.light)]);
-                light_pdf = nee_pdf(lights, uint32_t(hit.light), tri, ray.d, hit.t);
-            }
-            L += beta * material.emission * emission_weight(light_pdf);
+            add_emission(material.emission, hit.light >= 0 ? light_pdf(uint32_t(hit.light), hit.t) : 0.f);
         }
-        if (bounce > m_settings.max_bounces) break;
+        if (bounce > cfg.max_bounces) return;
 
         // Local shading frame on the side the path arrives from (surfaces are two-sided).
         const Vec3 wo = -ray.d;
@@ -91,62 +146,92 @@ Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
         const Bsdf& bsdf = material.bsdf(backfacing);
 
         // Named sample dimensions: each is the same sequence dimension for every sample of every pixel.
-        const float u_select = get_1d(sampler, Dim::LightSelect, bounce);
-        const Vec2 u_light = get_2d(sampler, Dim::Light, bounce);
-        const Vec2 u_bsdf = get_2d(sampler, Dim::Bsdf, bounce);
-        const float u_rr = get_1d(sampler, Dim::Roulette, bounce);
-        const float u_lobe = get_1d(sampler, Dim::BsdfLobe, bounce);
+        const int dim = bounce + st.dim_offset;
+        const float u_select = get_1d(sampler, Dim::LightSelect, dim);
+        const Vec2 u_light = get_2d(sampler, Dim::Light, dim);
+        const Vec2 u_bsdf = get_2d(sampler, Dim::Bsdf, dim);
+        const float u_rr = get_1d(sampler, Dim::Roulette, dim);
+        const float u_lobe = get_1d(sampler, Dim::BsdfLobe, dim);
 
-        // Next-event estimation.
-        if (has_nee && !bsdf.is_delta()) {  // a purely specular BSDF gets its light from BSDF sampling
-            float pmf;
-            const uint32_t li = lights.select(u_select, &pmf);
-            if (pmf > 0.f) {
-                const LightSample ls = light_sample_li(lights[li], {hit.p, ns}, u_light);
-                const Vec3 wi_local = frame.to_local(ls.wi);
-                // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks).
-                const float cos_g = dot(ls.wi, ng);
-                if (ls.valid() && cos_g != 0.f && (cos_g > 0.f) == (wi_local.z > 0.f)) {
-                    const Color f = bsdf_f(bsdf, wo_local, wi_local) * std::fabs(wi_local.z);
-                    if (!is_black(f)) {
-                        const Vec3 origin = offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng);
-                        const float tmax = std::isfinite(ls.dist) ? ls.dist * (1.f - 1e-4f) : k_inf;
-                        ++stats.rays;
-                        if (!m_scene.occluded(origin, ls.wi, tmax)) {
-                            const float light_pdf = pmf * ls.pdf;
-                            const float w = ls.is_delta ? 1.f : power_heuristic(light_pdf, bsdf_pdf(bsdf, wo_local, wi_local));
-                            L += beta * f * ls.Li * (w / light_pdf);
-                        }
-                    }
+        // Next-event estimation: k stratified shadow rays, each choosing one light (or, for ALL, k for every
+        // light). The contribution of light i is f·Li·|cos|/(k·pmf·pdf), MIS-weighted against the continuation.
+        const LightSampleContext ctx{hit.p, ns};
+        auto estimate_light = [&](uint32_t li, float pmf, Vec2 u) {
+            const LightSample ls = light_sample_li(lights[li], ctx, u, cfg.light_pdf);
+            if (!ls.valid() || (cfg.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return;
+            const Vec3 wi_local = frame.to_local(ls.wi);
+            // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks).
+            const float cos_g = dot(ls.wi, ng);
+            if (cos_g == 0.f || (cos_g > 0.f) != (wi_local.z > 0.f)) return;
+            const Color f = bsdf.f(wo_local, wi_local) * std::fabs(wi_local.z);
+            if (is_black(f)) return;
+            const Vec3 origin = offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng);
+            const float tmax = std::isfinite(ls.dist) ? ls.dist * (1.f - 1e-4f) : k_inf;
+            ++stats.rays;
+            if (m_scene.occluded(origin, ls.wi, tmax, hit.primitive)) return;
+            const float density = float(k) * pmf * ls.pdf;
+            float w = 1.f;
+            if (!ls.is_delta && cfg.light_sampling == LightSampling::Mis)
+                w = mis_weight(cfg.mis_heuristic, density, continuation_pdf(cfg.hemisphere_sampling, bsdf, wo_local, wi_local));
+            Color c = st.beta * f * ls.Li * (w / density);
+            if (cfg.clamp_indirect > 0.f && bounce >= 1 && max_component(c) > cfg.clamp_indirect)
+                c *= cfg.clamp_indirect / max_component(c);
+            L += c;
+        };
+        if (nee_enabled && bsdf.has_non_delta()) {
+            if (m_light_sampler.exhaustive()) {
+                for (uint32_t li = 0; li < lights.size(); ++li)
+                    for (int i = 0; i < k; ++i) estimate_light(li, 1.f, light_sample_u(u_light, uint32_t(i), uint32_t(k)));
+            } else {
+                for (int i = 0; i < k; ++i) {
+                    float pmf = 0.f;
+                    const uint32_t li = m_light_sampler.select(ctx, light_select_u(u_select, uint32_t(i), uint32_t(k)), &pmf);
+                    if (pmf > 0.f) estimate_light(li, pmf, light_sample_u(u_light, uint32_t(i), uint32_t(k)));
                 }
             }
         }
 
-        // Continue the path by sampling the BSDF.
-        const BsdfSample bs = bsdf_sample(bsdf, wo_local, u_bsdf, u_lobe, TransportMode::Radiance);
-        if (!bs.valid()) break;
-        const Vec3 wi = frame.to_world(bs.wi);
-        // The sampled side (reflection: +ng, transmission: −ng) must agree with the geometry: a leak else.
-        const float cos_g = dot(wi, ng);
-        if (bs.is_transmission() ? cos_g >= 0.f : cos_g <= 0.f) break;
-        beta *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
-        prev_bsdf_pdf = bs.pdf;
-        prev_delta = bs.is_delta();
-        // Radiance mode scales β by 1/η² at each refraction; undo it for the roulette only (robustness §5).
-        if (bs.is_transmission()) eta_scale *= bs.eta * bs.eta;
-
-        if (bounce + 1 >= m_settings.rr_start_bounce) {
-            const float survive = std::fmin(1.f, max_component(beta) * eta_scale);
-            if (!(survive > 0.f) || u_rr >= survive) break;
-            beta /= survive;
+        // Continue the path (at the first surface, in branching_factor stratified branches).
+        const int branches = bounce == 0 ? cfg.branching_factor : 1;
+        auto continuation = [&](int j, Ray* next_ray, PathState* next) {
+            const BsdfSample bs = sample_continuation(cfg.hemisphere_sampling, bsdf, wo_local,
+                                                      lattice_point(u_bsdf, j, branches), stratum_1d(u_lobe, j, branches));
+            if (!bs.valid() || is_black(bs.f)) return false;
+            const Vec3 wi = frame.to_world(bs.wi);
+            // The sampled side (reflection: +ng, transmission: −ng) must agree with the geometry: a leak else.
+            const float cos_g = dot(wi, ng);
+            if (bs.is_transmission() ? cos_g >= 0.f : cos_g <= 0.f) return false;
+            next->beta = st.beta * bs.f * (std::fabs(bs.wi.z) / (bs.pdf * float(branches)));
+            next->bsdf_pdf = bs.pdf;
+            next->specular = bs.is_delta();
+            // Radiance mode scales β by 1/η² at each refraction; undo it for the roulette only (robustness §5).
+            next->eta_scale = st.eta_scale * (bs.is_transmission() ? bs.eta * bs.eta : 1.f);
+            next->from = hit.primitive;
+            next->origin = ctx;
+            // Branches draw from their own sample dimensions (else they would repeat each other).
+            next->dim_offset = st.dim_offset + j * (cfg.max_bounces + 2);
+            if (cfg.rr_mode != RouletteMode::Off && bounce + 1 >= cfg.rr_start_bounce) {
+                const float survive = cfg.rr_mode == RouletteMode::Albedo
+                                          ? std::fmin(1.f, max_component(bsdf.albedo(wo_local)))
+                                          : std::fmin(1.f, max_component(next->beta) * float(branches) * next->eta_scale);
+                if (!(survive > 0.f) || stratum_1d(u_rr, j, branches) >= survive) return false;
+                next->beta /= survive;
+            }
+            if (is_black(next->beta) || !is_finite(next->beta)) return false;
+            *next_ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng), wi, 0.f, k_inf};
+            return true;
+        };
+        if (branches == 1) {  // the common case: keep looping instead of recursing
+            if (!continuation(0, &ray, &st)) return;
+            continue;
         }
-        if (is_black(beta)) break;
-        ray.o = offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng);
-        ray.d = wi;
-        ray.tmin = 0.f;
-        ray.tmax = k_inf;
+        for (int j = 0; j < branches; ++j) {
+            Ray next_ray;
+            PathState next;
+            if (continuation(j, &next_ray, &next)) trace(next_ray, next, bounce + 1, sampler, stats, L, alpha);
+        }
+        return;
     }
-    return L;
 }
 
 }  // namespace candela

@@ -1,15 +1,22 @@
 // Unidirectional path tracing: estimates the pixel integral of the measurement equation with paths
-// grown from the camera (Kajiya 1986, "The Rendering Equation"). At every vertex, direct light is
-// estimated twice — by next-event estimation (one light chosen ∝ power, one point on it) and by the
-// BSDF-sampled continuation ray hitting an emitter — and the two are combined with multiple importance
-// sampling using the power heuristic (Veach 1997, ch. 9, eq. 9.13). Lights no BSDF ray can reach
-// (point, spot, sun) get weight 1. Paths end at max_bounces or by Russian roulette with survival
-// probability min(1, max throughput) from rr_start_bounce on (Arvo & Kirk 1990), which keeps the
-// estimator unbiased for the truncated sum.
+// grown from the camera (Kajiya 1986, "The Rendering Equation"). At every vertex direct light is
+// estimated twice — by next-event estimation (light_samples stratified shadow rays, each choosing one
+// light by the light_selection strategy — or every light, for ALL — and a point on it by area or by solid
+// angle, light_pdf) and by the continuation ray hitting an emitter — and the two are combined by multiple importance
+// sampling with the balance or power heuristic (Veach 1997, ch. 9, eqs. 9.12–9.13, with n_light =
+// light_samples). light_sampling restricts it to one estimator (BSDF_ONLY keeps light sampling for delta
+// lights, which no ray can hit). Lights no BSDF ray can reach (point, spot, sun) get weight 1. The
+// continuation is drawn by BSDF importance sampling, or uniformly / cosine-weighted over the hemisphere for
+// teaching (hemisphere_sampling). branching_factor > 1 splits the path at the first surface into that many
+// stratified continuations (Cook's stochastic ray tracing), each carrying 1/b of the throughput. Paths end
+// at max_bounces, or by Russian roulette from rr_start_bounce on (Arvo & Kirk 1990) with survival
+// min(1, max throughput·Πη²) or the surface's albedo, which keeps the estimator unbiased for the truncated
+// sum. clamp_indirect (off by default) clamps indirect contributions: biased, fewer fireflies.
 #pragma once
 
 #include "integrators/path/path_settings.h"
 #include "integrators/render_context.h"
+#include "lights/light_sampler.h"
 #include "sampling/sampler.h"
 #include "scene/scene.h"
 
@@ -17,14 +24,30 @@ namespace candela {
 
 class PathTracer {
 public:
-    PathTracer(const Scene& scene, const PathSettings& settings) : m_scene(scene), m_settings(settings) {}
+    PathTracer(const Scene& scene, const PathSettings& settings, const LightSampler& light_sampler)
+        : m_scene(scene), m_settings(settings), m_light_sampler(light_sampler) {}
 
     /// Radiance arriving along the camera ray; *alpha is 0 when film_transparent and the ray escapes.
     Color Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha) const;
 
+    /// How the ray being traced was produced: what the vertex it hits needs for MIS, roulette and dims.
+    struct PathState {
+        Color beta{1.f};         // throughput
+        float bsdf_pdf = 0.f;    // pdf of the continuation strategy that produced the ray
+        bool specular = true;    // camera ray or delta scatter: emission counts with weight 1
+        float eta_scale = 1.f;   // Π η² over refractions (roulette only)
+        PrimitiveRef from;       // the triangle the ray leaves (skipped by the intersection)
+        LightSampleContext origin;  // the vertex the ray leaves, as light sampling saw it (for MIS)
+        int dim_offset = 0;      // added to the bounce for sample dimensions (branches use their own)
+    };
+
 private:
+    void trace(Ray ray, PathState state, int bounce, Sampler& sampler, PathStats& stats, Color& L,
+               float* alpha) const;
+
     const Scene& m_scene;
     const PathSettings& m_settings;
+    const LightSampler& m_light_sampler;
 };
 
 }  // namespace candela
