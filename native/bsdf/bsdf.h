@@ -68,6 +68,8 @@ public:
     bool has_non_delta() const { return m_count > 0 && !is_delta(); }
 
     Color f(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
+        if (m_count == 1)  // one lobe: no mixture bookkeeping (the common diffuse case)
+            return m_lobes[0].weight * std::visit([&](const auto& l) { return l.f(wo, wi, mode); }, m_lobes[0].lobe);
         Color sum(0.f);
         for (int i = 0; i < m_count; ++i) {
             const WeightedLobe& wl = m_lobes[size_t(i)];
@@ -77,6 +79,7 @@ public:
     }
 
     float pdf(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
+        if (m_count == 1) return std::visit([&](const auto& l) { return l.pdf(wo, wi, mode); }, m_lobes[0].lobe);
         std::array<float, k_max_lobes> p;
         if (!selection(wo, p)) return 0.f;
         float sum = 0.f;
@@ -87,6 +90,11 @@ public:
     }
 
     BsdfSample sample(const Vec3& wo, Vec2 u, float uc, TransportMode mode = TransportMode::Radiance) const {
+        if (m_count == 1) {  // one lobe: its own sample is exactly the mixture's
+            BsdfSample s = std::visit([&](const auto& l) { return l.sample(wo, u, uc, mode); }, m_lobes[0].lobe);
+            s.f *= m_lobes[0].weight;
+            return s;
+        }
         std::array<float, k_max_lobes> p;
         if (!selection(wo, p)) return {};
         // Pick lobe i by uc and rescale uc to [0, 1) for the lobe's own discrete choice.
