@@ -46,9 +46,10 @@ def main():
     ap.add_argument("--build", default=str(ROOT / "build"))
     ap.add_argument("--out", default=str(ROOT / "docs" / "robustness.md"))
     a = ap.parse_args()
-    junit = Path(a.build) / "robustness-junit.xml"
+    build = Path(a.build).resolve()
+    junit = build / "robustness-junit.xml"
     subprocess.run(["ctest", "-R", "Fuzz|SelfIntersection|FarFromOrigin|Energy|BadInput|robustness_|python_native",
-                    "--output-junit", str(junit)], cwd=a.build, check=False)
+                    "--output-junit", str(junit)], cwd=build, check=False)
     results = {}
     for case in ET.parse(junit).getroot().iter("testcase"):
         failed = case.find("failure") is not None or case.get("status") == "fail"
