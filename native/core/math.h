@@ -20,14 +20,6 @@ inline float lerp(float t, float a, float b) { return a + t * (b - a); }
 inline float safe_sqrt(float v) { return std::sqrt(std::max(v, 0.f)); }
 inline float sqr(float v) { return v * v; }
 
-/// Power heuristic (beta = 2) for two strategies with one sample each: Veach 1997, eq. 9.13.
-inline float power_heuristic(float pdf_a, float pdf_b) {
-    const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
-    if (std::isinf(a)) return 1.f;  // a delta strategy is never weighted down
-    const float sum = a + b;
-    return sum > 0.f ? a / sum : 0.f;
-}
-
 inline uint32_t float_bits(float f) {
     uint32_t u;
     std::memcpy(&u, &f, sizeof u);

@@ -82,6 +82,7 @@ std::unique_ptr<Session> make_session(const py::dict& arrays_dict, const py::dic
         py::gil_scoped_release release;  // validation of millions of triangles needs no Python
         session = std::make_unique<Session>(std::move(arrays), std::move(params));
     }
+    for (const auto& key : unknown) session->add_log("unknown scene array '" + key + "' was ignored");
     return session;
 }
 

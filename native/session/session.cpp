@@ -157,6 +157,11 @@ std::vector<std::string> Session::take_log() {
     return out;
 }
 
+void Session::add_log(std::string message) {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    m_log.push_back(std::move(message));
+}
+
 std::vector<std::pair<std::string, int>> Session::pass_names() { return {{"Combined", 4}, {"Noise", 1}}; }
 
 std::vector<float> Session::get_pass(const std::string& name, int* channels) const {

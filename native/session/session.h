@@ -56,6 +56,8 @@ public:
     SessionStats stats() const;
     std::optional<std::string> error() const;
     std::vector<std::string> take_log();
+    /// Adds a warning for take_log() (the boundary reports what it ignored).
+    void add_log(std::string message);
 
     int width() const { return m_film->width(); }
     int height() const { return m_film->height(); }

@@ -67,6 +67,13 @@ def test_unknown_params_are_reported(native):
     assert any("smaples" in line for line in s.take_log())
 
 
+def test_unknown_arrays_are_reported(native):
+    arrays = box_scene()
+    arrays["positons"] = np.zeros((1, 3), np.float32)
+    s = native.Session(arrays, params())
+    assert any("positons" in line for line in s.take_log())
+
+
 def test_cancel_stops_within_100_ms_and_keeps_the_partial_image(native):
     s = native.Session(box_scene(), params(width=256, height=256, samples=100000, max_bounces=12))
     s.start()

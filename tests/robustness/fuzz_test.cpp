@@ -14,6 +14,7 @@
 namespace candela::test {
 namespace {
 
+// No random seed has failed so far; seed 0 keeps the mechanism exercised. Append failing seeds here.
 const uint64_t k_regression_seeds[] = {0};
 
 struct Outcome {

@@ -13,7 +13,6 @@ namespace candela {
 namespace {
 
 constexpr float k_inf = std::numeric_limits<float>::infinity();
-constexpr float k_golden = 0.6180339887498949f;
 
 /// MIS weight of strategy a against b (pdfs already scaled by their sample counts); a delta a weighs 1.
 float mis_weight(MisHeuristic h, float a, float b) {
@@ -25,16 +24,6 @@ float mis_weight(MisHeuristic h, float a, float b) {
     const float sum = a + b;
     return sum > 0.f && std::isfinite(sum) ? a / sum : 0.f;
 }
-
-float frac(float x) { return x - std::floor(x); }
-
-/// The i-th of n stratified 2-D points: a rank-1 lattice (i/n, i·φ) rotated by u (Cranley–Patterson).
-Vec2 lattice_point(Vec2 u, int i, int n) {
-    if (n == 1) return u;
-    return {std::fmin(frac(u.x + float(i) / n), k_one_minus_epsilon),
-            std::fmin(frac(u.y + float(i) * k_golden), k_one_minus_epsilon)};
-}
-float stratum_1d(float u, int i, int n) { return n == 1 ? u : std::fmin((float(i) + u) / n, k_one_minus_epsilon); }
 
 /// Continuation direction by the chosen hemisphere strategy; delta or mixed-delta BSDFs always use their
 /// own sampling (a uniform or cosine direction can never hit a delta lobe).
@@ -195,7 +184,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
         const int branches = bounce == 0 ? cfg.branching_factor : 1;
         auto continuation = [&](int j, Ray* next_ray, PathState* next) {
             const BsdfSample bs = sample_continuation(cfg.hemisphere_sampling, bsdf, wo_local,
-                                                      lattice_point(u_bsdf, j, branches), stratum_1d(u_lobe, j, branches));
+                                                      light_sample_u(u_bsdf, uint32_t(j), uint32_t(branches)), light_select_u(u_lobe, uint32_t(j), uint32_t(branches)));
             if (!bs.valid() || is_black(bs.f)) return false;
             const Vec3 wi = frame.to_world(bs.wi);
             // The sampled side (reflection: +ng, transmission: −ng) must agree with the geometry: a leak else.
@@ -214,7 +203,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
                 const float survive = cfg.rr_mode == RouletteMode::Albedo
                                           ? std::fmin(1.f, max_component(bsdf.albedo(wo_local)))
                                           : std::fmin(1.f, max_component(next->beta) * float(branches) * next->eta_scale);
-                if (!(survive > 0.f) || stratum_1d(u_rr, j, branches) >= survive) return false;
+                if (!(survive > 0.f) || light_select_u(u_rr, uint32_t(j), uint32_t(branches)) >= survive) return false;
                 next->beta /= survive;
             }
             if (is_black(next->beta) || !is_finite(next->beta)) return false;
