@@ -68,6 +68,7 @@ def to_native_params(scene, camera_data, argv=None):
         "mis_heuristic": settings.mis_heuristic,
         "light_pdf": settings.light_pdf,
         "light_selection": settings.light_selection,
+        "ward_threshold": float(settings.ward_threshold),
         "light_samples": settings.light_samples,
         "branching_factor": settings.branching_factor,
         "rr_mode": settings.rr_mode,

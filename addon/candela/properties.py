@@ -95,6 +95,10 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
                             description="How a point on an area light or emissive triangle is chosen")
     light_selection: EnumProperty(name="Light Selection", items=LIGHT_SELECTIONS, default="TREE",
                                   description="How next-event estimation chooses among many lights")
+    ward_threshold: FloatProperty(name="Ward Threshold", description="Light Selection WARD: shadow-test lights in "
+                                  "order of their largest possible contribution until the untested lights could add "
+                                  "at most this fraction of the light found; the rest is estimated by one sampled "
+                                  "light (unbiased). 0 tests every light", default=0.05, min=0.0, soft_max=1.0)
     light_samples: IntProperty(name="Light Samples", description="Shadow rays per path vertex (stratified)",
                                default=1, min=1, max=256)
     branching_factor: IntProperty(name="Branching Factor", description="Continuation rays at the first surface "

@@ -41,6 +41,10 @@ public:
         if (is_black(weight) || !(max_component(weight) > 0.f) || !is_finite(weight)) return true;
         if (m_count >= k_max_lobes) return false;
         m_lobes[size_t(m_count++)] = WeightedLobe{lobe, vmax(weight, Color(0.f))};
+        // A lobe's flags are fixed by its parameters, which never change after add(): cache them.
+        const uint32_t fl = std::visit([](const auto& l) { return l.flags(); }, lobe);
+        m_flags |= fl;
+        if (!(fl & k_bsdf_specular)) m_all_delta = false;
         return true;
     }
     void scale(Color s) {
@@ -52,19 +56,9 @@ public:
     const WeightedLobe& operator[](int i) const { return m_lobes[size_t(i)]; }
 
     /// Union of the lobes' flags.
-    uint32_t flags() const {
-        uint32_t fl = 0;
-        for (int i = 0; i < m_count; ++i) fl |= std::visit([](const auto& l) { return l.flags(); }, m_lobes[size_t(i)].lobe);
-        return fl;
-    }
+    uint32_t flags() const { return m_flags; }
     /// True if every lobe is a delta distribution (NEE is pointless); false for an empty BSDF.
-    bool is_delta() const {
-        if (m_count == 0) return false;
-        for (int i = 0; i < m_count; ++i)
-            if (!(std::visit([](const auto& l) { return l.flags(); }, m_lobes[size_t(i)].lobe) & k_bsdf_specular))
-                return false;
-        return true;
-    }
+    bool is_delta() const { return m_count > 0 && m_all_delta; }
     bool has_non_delta() const { return m_count > 0 && !is_delta(); }
 
     Color f(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
@@ -156,6 +150,8 @@ public:
 private:
     std::array<WeightedLobe, k_max_lobes> m_lobes{};
     int m_count = 0;
+    uint32_t m_flags = 0;      // union of the lobes' flags
+    bool m_all_delta = true;   // every lobe specular (vacuous when empty; is_delta() checks m_count)
 };
 
 /// Mix Shader: (1 − fac)·a + fac·b (fac clamped to [0, 1]).

@@ -321,6 +321,17 @@ WardList WardLightSampler::candidates(const LightSampleContext& ctx) const {
     return list;
 }
 
+float WardLightSampler::adaptive_pmf(const LightSampleContext& ctx, uint32_t light, size_t tested) const {
+    const WardList list = candidates(ctx);
+    for (size_t r = 0; r < list.size(); ++r) {
+        if (list.candidates()[r].light != light) continue;
+        if (r < tested) return 1.f;
+        const double tail = list.remainder(tested);
+        return tail > 0.0 ? float(double(list.candidates()[r].bound) / tail) : 0.f;
+    }
+    return 0.f;
+}
+
 // ---- registry ------------------------------------------------------------------------------------------
 
 LightSampler make_light_sampler(LightSelection kind, const LightSet& lights, const LightSamplerOptions&) {

@@ -141,6 +141,10 @@ public:
     float pmf(const LightSampleContext& ctx, uint32_t light) const;
     /// The bound-sorted candidate list at ctx: O(N log N).
     WardList candidates(const LightSampleContext& ctx) const;
+    /// The probability with which adaptive shadow testing at ctx, having tested the first `tested` candidates
+    /// with every light sample, estimates `light`: 1 if it was tested, its tail-selection pmf otherwise
+    /// (0 for a light with a zero bound). The MIS light density of that realisation.
+    float adaptive_pmf(const LightSampleContext& ctx, uint32_t light, size_t tested) const;
 
 private:
     const LightSet* m_lights = nullptr;

@@ -54,9 +54,10 @@ double spherical_triangle_solid_angle(const Vec3& p, const Vec3& a, const Vec3& 
     return std::isfinite(omega) && omega > 0.0 ? omega : 0.0;
 }
 
-SphericalSample sample_spherical_triangle(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, Vec2 u) {
+SphericalSample sample_spherical_triangle(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, Vec2 u,
+                                         double omega) {
     SphericalSample out;
-    const double omega = spherical_triangle_solid_angle(p, v0, v1, v2);
+    if (!(omega > 0.0)) omega = spherical_triangle_solid_angle(p, v0, v1, v2);
     if (!(omega > 0.0)) return out;
     D3 a = d3(v0) - d3(p), b = d3(v1) - d3(p), c = d3(v2) - d3(p);
     if (!normalize_d(&a) || !normalize_d(&b) || !normalize_d(&c)) return out;

@@ -35,7 +35,9 @@ struct SphericalSample {
 
 /// Uniform direction inside the spherical triangle (v0, v1, v2) seen from p (Arvo 1995).
 /// pdf = 1/Ω with Ω = spherical_triangle_solid_angle(p, v0, v1, v2) — the value the pdf evaluation uses.
-SphericalSample sample_spherical_triangle(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, Vec2 u);
+/// `omega`, if > 0, is spherical_triangle_solid_angle(p, v0, v1, v2) already computed by the caller.
+SphericalSample sample_spherical_triangle(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, Vec2 u,
+                                         double omega = 0.0);
 
 /// A rectangle (corner s, orthogonal edges ex, ey) prepared for sampling from reference point o
 /// (Ureña et al. 2013). `usable()` says whether solid-angle sampling is robust from o; the pdf evaluation of

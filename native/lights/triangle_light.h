@@ -1,9 +1,13 @@
 // An emissive mesh triangle (Cycles: emission closure, both sides emit radiance L = strength·colour),
 // in world space. `light_pdf = AREA`: uniform by area, p_ω = d²/(A |cos θ_l|) (the two-argument
 // sample_li/pdf_li). `light_pdf = SOLID_ANGLE`: spherical-triangle sampling (Arvo 1995), p_ω = 1/Ω, used only
-// when 3e-4 < Ω < 6.22 sr as seen from the shading point, else area sampling; pdf_li(ctx, ...) mirrors it.
+// where it pays off and is robust: the triangle is near (its longest edge is longer than the shading point's
+// distance to its plane — farther away, area sampling's density is already close to uniform in solid angle
+// and the spherical construction's trigonometry would be wasted; Cycles uses the same rule) and
+// 3e-4 < Ω < 6.22 sr; else area sampling. pdf_li(ctx, ...) mirrors the choice exactly.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/math.h"
@@ -29,15 +33,31 @@ struct TriangleLight {
 
     /// Solid angle seen from p, and whether SOLID_ANGLE mode samples it spherically from there.
     bool uses_spherical_sampling(const Vec3& p, float* omega = nullptr) const {
-        const double sr = spherical_triangle_solid_angle(p, p0, p1, p2);
-        if (omega) *omega = float(sr);
-        return sr > k_min_spherical_triangle_sr && sr < k_max_spherical_triangle_sr;
+        double sr = 0.0;
+        const bool spherical = spherical_solid_angle(p, &sr);
+        if (omega) *omega = float(is_near(p) ? sr : spherical_triangle_solid_angle(p, p0, p1, p2));
+        return spherical;
+    }
+
+    /// Whether SOLID_ANGLE mode samples spherically from p; if so, *sr is the solid angle (else unset).
+    bool spherical_solid_angle(const Vec3& p, double* sr) const {
+        if (!is_near(p)) return false;
+        *sr = spherical_triangle_solid_angle(p, p0, p1, p2);
+        return *sr > k_min_spherical_triangle_sr && *sr < k_max_spherical_triangle_sr;
+    }
+
+    /// Longest edge² > (distance from p to the triangle's plane)².
+    bool is_near(const Vec3& p) const {
+        const float longest_sq = std::max(std::max(length_squared(p1 - p0), length_squared(p2 - p1)), length_squared(p0 - p2));
+        const float plane_dist = dot(p0 - p, normal);
+        return longest_sq > plane_dist * plane_dist;
     }
 
     LightSample sample_li(const LightSampleContext& ctx, Vec2 u, LightPdfMode mode) const {
-        if (mode == LightPdfMode::Area || !uses_spherical_sampling(ctx.p)) return sample_li(ctx, u);
+        double sr = 0.0;
+        if (mode == LightPdfMode::Area || !spherical_solid_angle(ctx.p, &sr)) return sample_li(ctx, u);
         LightSample s;
-        const SphericalSample ss = sample_spherical_triangle(ctx.p, p0, p1, p2, u);
+        const SphericalSample ss = sample_spherical_triangle(ctx.p, p0, p1, p2, u, sr);
         if (!(ss.pdf > 0.f)) return s;
         const float denom = dot(ss.w, normal);
         const float t = dot(p0 - ctx.p, normal) / denom;
@@ -51,9 +71,8 @@ struct TriangleLight {
 
     /// Solid-angle pdf of direction wi from ctx.p that hits the triangle at distance t, in `mode`.
     float pdf_li(const LightSampleContext& ctx, const Vec3& wi, float t, LightPdfMode mode) const {
-        if (mode == LightPdfMode::Area) return pdf_li(wi, t);
-        const double sr = spherical_triangle_solid_angle(ctx.p, p0, p1, p2);
-        if (!(sr > k_min_spherical_triangle_sr && sr < k_max_spherical_triangle_sr)) return pdf_li(wi, t);
+        double sr = 0.0;
+        if (mode == LightPdfMode::Area || !spherical_solid_angle(ctx.p, &sr)) return pdf_li(wi, t);
         const float pdf = float(1.0 / sr);  // the expression sample_spherical_triangle() uses
         return std::isfinite(pdf) ? pdf : 0.f;
     }

@@ -24,11 +24,10 @@ inline constexpr int k_num_primes = 1024;
 uint32_t prime(int index);
 
 inline uint32_t reverse_bits32(uint32_t v) {
-    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
-    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = __builtin_bswap32(v);  // bytes, then nibbles, bit pairs and bits within each byte
     v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
-    v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
-    return (v >> 16) | (v << 16);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    return ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
 }
 
 /// Φ_b(a) for a base b ≥ 2: the digits of a mirrored about the radix point (exact for base 2 when a < 2^32).
@@ -46,20 +45,53 @@ inline double hammersley(int dim, uint64_t i, uint64_t n) {
 /// The first two Sobol dimensions as 32-bit fixed-point fractions (MSB = first binary digit).
 /// Together they form a (0,2)-sequence in base 2: every aligned block of 2^m indices is a (0,m,2)-net.
 inline uint32_t sobol_dim0(uint32_t i) { return reverse_bits32(i); }
-inline uint32_t sobol_dim1(uint32_t i) {
+/// Sobol dimension 1 by its generator matrix (direction number of bit j: v_0 = 2^31, v_{j+1} = v_j ^ v_j >> 1),
+/// bit-by-bit: the reference the table below is built from and checked against.
+constexpr uint32_t sobol_dim1_bitwise(uint32_t i) {
     uint32_t r = 0;
     for (uint32_t v = 1u << 31; i != 0; i >>= 1, v ^= v >> 1)
         if (i & 1u) r ^= v;
     return r;
+}
+namespace detail {
+/// The matrix-vector product is linear over GF(2), so it splits into four byte lookups: entry [k][b] is the
+/// image of byte b placed at byte position k. Scrambled indices use all 32 bits, where the bit loop's
+/// data-dependent branches were the sampler's main cost.
+struct SobolDim1Tables {
+    uint32_t t[4][256] = {};
+    uint32_t reversed[4][256] = {};  // reverse_bits32 of each entry (bit reversal is linear over GF(2) too)
+    constexpr SobolDim1Tables() {
+        for (int k = 0; k < 4; ++k)
+            for (uint32_t b = 0; b < 256; ++b) {
+                const uint32_t v = sobol_dim1_bitwise(b << (8 * k));
+                t[k][b] = v;
+                uint32_t r = 0;
+                for (int j = 0; j < 32; ++j) r |= ((v >> j) & 1u) << (31 - j);
+                reversed[k][b] = r;
+            }
+    }
+};
+inline constexpr SobolDim1Tables k_sobol_dim1_tables{};
+}  // namespace detail
+inline uint32_t sobol_dim1(uint32_t i) {
+    const auto& t = detail::k_sobol_dim1_tables.t;
+    return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
+}
+/// reverse_bits32(sobol_dim1(i)), without the reversal.
+inline uint32_t sobol_dim1_reversed(uint32_t i) {
+    const auto& t = detail::k_sobol_dim1_tables.reversed;
+    return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
 }
 
 /// A bijection of 32-bit words in which output bit k equals input bit k XOR a seeded hash of the input
 /// bits below k (so it is an Owen scramble of the bit-reversed word).
 inline uint32_t owen_lsb_hash(uint32_t x, uint64_t seed) {
     // Every step is triangular: bit k changes only through bits < k (adding, multiplying by an odd
-    // number, xoring in a multiple by an even number), with seed-dependent constants.
-    const uint64_t h0 = mix64(seed ^ 0x6a09e667f3bcc909ULL), h1 = mix64(h0 + 0xbb67ae8584caa73bULL);
-    const uint64_t h2 = mix64(h1 + 0x3c6ef372fe94f82bULL);
+    // number, xoring in a multiple by an even number). One mix of the seed gives 64 random bits; the
+    // seed-dependent constants are that word and two odd-multiplied rotations of it (cheap, and as
+    // random as the word itself for scrambling purposes).
+    const uint64_t h0 = mix64(seed ^ 0x6a09e667f3bcc909ULL);
+    const uint64_t h1 = rotl64(h0 * 0xbb67ae8584caa73bULL, 29), h2 = rotl64(h0 * 0x3c6ef372fe94f82bULL, 43);
     x += uint32_t(h0);
     x ^= x * (uint32_t(h0 >> 32) << 1);
     x *= uint32_t(h1) | 1u;

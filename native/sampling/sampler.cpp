@@ -17,18 +17,6 @@ inline float stratum_value(uint32_t s, float jitter, uint32_t n) {
 
 }  // namespace
 
-// ---- independent values (also the fallback of every other sampler) ----
-
-float SamplerBase::independent_1d(uint32_t dim) const {
-    const uint64_t h = hash_values(m_pixel_key, m_index, dim);
-    return float(h >> 40) * 0x1p-24f;
-}
-
-Vec2 SamplerBase::independent_2d(uint32_t dim) const {
-    const uint64_t h = hash_values(m_pixel_key, m_index, dim);
-    return {float(h >> 40) * 0x1p-24f, float((h >> 8) & 0xffffffu) * 0x1p-24f};
-}
-
 // ---- STRATIFIED ----
 
 StratifiedSampler::StratifiedSampler(uint64_t seed, int samples_per_pixel) : SamplerBase(seed, samples_per_pixel) {
@@ -106,15 +94,20 @@ float HammersleySampler::sample_1d(uint32_t dim) const {
 
 // ---- SOBOL (Burley 2020: shuffled, Owen-scrambled (0,2)-sequence per request) ----
 
+// In the bit-reversed domain the scrambles are owen_lsb_hash, and sobol_dim0 is the reversal itself, so
+//   shuffled index  i = reverse(lsb_hash(reverse(index), k1)),
+//   x = owen_scramble(sobol_dim0(i), k2) = reverse(lsb_hash(i, k2)),
+//   y = owen_scramble(sobol_dim1(i), k3) = reverse(lsb_hash(sobol_dim1_reversed(i), k3)):
+// the same values as the textbook composition with three bit reversals instead of seven.
 float SobolSampler::sample_1d(uint32_t dim) const {
-    const uint32_t i = owen_scramble_base2(m_index, dim_key(dim, 1));
-    return fixed_to_float(owen_scramble_base2(sobol_dim0(i), dim_key(dim, 2)));
+    const uint32_t i = reverse_bits32(owen_lsb_hash(m_reversed_index, dim_key(dim, 1)));
+    return fixed_to_float(reverse_bits32(owen_lsb_hash(i, dim_key(dim, 2))));
 }
 
 Vec2 SobolSampler::sample_2d(uint32_t dim) const {
-    const uint32_t i = owen_scramble_base2(m_index, dim_key(dim, 1));
-    return {fixed_to_float(owen_scramble_base2(sobol_dim0(i), dim_key(dim, 2))),
-            fixed_to_float(owen_scramble_base2(sobol_dim1(i), dim_key(dim, 3)))};
+    const uint32_t i = reverse_bits32(owen_lsb_hash(m_reversed_index, dim_key(dim, 1)));
+    return {fixed_to_float(reverse_bits32(owen_lsb_hash(i, dim_key(dim, 2)))),
+            fixed_to_float(reverse_bits32(owen_lsb_hash(sobol_dim1_reversed(i), dim_key(dim, 3))))};
 }
 
 // ---- registry ----

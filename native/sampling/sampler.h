@@ -33,6 +33,7 @@
 
 #include "core/rng.h"
 #include "core/vec.h"
+#include "sampling/low_discrepancy.h"
 
 namespace candela {
 
@@ -67,6 +68,8 @@ public:
 
     void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
         m_pixel_key = hash_values(m_seed, (uint64_t(py) << 32) | px, 0x706978656cULL);
+        // One hash per pixel sample; every independent value is then a single SplitMix64 step from it.
+        m_sample_key = mix64(m_pixel_key ^ (uint64_t(sample_index) * 0xd1b54a32d192ed03ULL + 0x73616d706c65ULL));
         m_index = sample_index;
         m_next_dim = k_camera_dimensions;
     }
@@ -78,16 +81,26 @@ public:
     uint32_t samples_per_pixel() const { return m_spp; }
 
 protected:
-    /// Seed of one randomisation of one dimension of this pixel.
+    /// Seed of one randomisation (purpose 0–3) of one dimension of this pixel: distinct for every (dim, purpose)
+    /// (a Weyl step from the random pixel key). Not itself mixed: every consumer (owen_scramble_base2,
+    /// permute_index) hashes its seed first, so one hash per randomisation suffices.
     uint64_t dim_key(uint32_t dim, uint32_t purpose = 0) const {
-        return hash_combine(m_pixel_key, (uint64_t(purpose) << 32) | dim);
+        return m_pixel_key + ((uint64_t(dim) << 2 | (purpose & 3u)) + 1u) * 0x9e3779b97f4a7c15ULL;
     }
-    float independent_1d(uint32_t dim) const;
-    Vec2 independent_2d(uint32_t dim) const;
+    /// 64 independent bits for coordinate `dim` of this pixel sample (SplitMix64 from the sample key).
+    uint64_t independent_bits(uint32_t dim) const {
+        return mix64(m_sample_key + (uint64_t(dim) + 1u) * 0x9e3779b97f4a7c15ULL);
+    }
+    float independent_1d(uint32_t dim) const { return float(independent_bits(dim) >> 40) * 0x1p-24f; }
+    Vec2 independent_2d(uint32_t dim) const {
+        const uint64_t h = independent_bits(dim);
+        return {float(h >> 40) * 0x1p-24f, float((h >> 8) & 0xffffffu) * 0x1p-24f};
+    }
 
     uint64_t m_seed;
     uint32_t m_spp;
     uint64_t m_pixel_key = 0;
+    uint64_t m_sample_key = 0;
     uint32_t m_index = 0;
     uint32_t m_next_dim = k_camera_dimensions;
 };
@@ -135,8 +148,15 @@ public:
 class SobolSampler : public SamplerBase {
 public:
     using SamplerBase::SamplerBase;
+    void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
+        SamplerBase::start_pixel_sample(px, py, sample_index);
+        m_reversed_index = reverse_bits32(sample_index);
+    }
     float sample_1d(uint32_t dim) const;
     Vec2 sample_2d(uint32_t dim) const;
+
+private:
+    uint32_t m_reversed_index = 0;  // the scrambles work on bit-reversed words: reverse the index once
 };
 
 using Sampler = std::variant<IndependentSampler, StratifiedSampler, NRooksSampler, HaltonSampler, HammersleySampler,

@@ -62,6 +62,9 @@ class CANDELA_RENDER_PT_light_sampling(CandelaPanel, bpy.types.Panel):
         sub.active = settings.light_sampling == 'MIS'
         sub.prop(settings, "mis_heuristic")
         col.prop(settings, "light_selection")
+        sub = col.column()
+        sub.active = settings.light_selection == 'WARD'
+        sub.prop(settings, "ward_threshold")
         col.prop(settings, "light_pdf")
         col.prop(settings, "light_samples")
 

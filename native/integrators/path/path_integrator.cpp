@@ -1,5 +1,7 @@
 #include "integrators/path/path_integrator.h"
 
+#include <cmath>
+
 #include "core/error.h"
 #include "integrators/path/path_tracer.h"
 #include "integrators/tile_renderer.h"
@@ -29,10 +31,13 @@ PathSettings PathSettings::from_params(const Params& params) {
     s.light_samples = params.get<int>("light_samples", 1);
     s.branching_factor = params.get<int>("branching_factor", 1);
     s.clamp_indirect = params.get<float>("clamp_indirect", 0.f);
+    s.ward_threshold = params.get<float>("ward_threshold", 0.05f);
     if (s.light_samples < 1 || s.light_samples > 256) throw InvalidParameter("light_samples must be between 1 and 256");
     if (s.branching_factor < 1 || s.branching_factor > 256)
         throw InvalidParameter("branching_factor must be between 1 and 256");
     if (s.clamp_indirect < 0.f) throw InvalidParameter("clamp_indirect must not be negative (0 = off)");
+    if (!(s.ward_threshold >= 0.f) || !std::isfinite(s.ward_threshold))
+        throw InvalidParameter("ward_threshold must be a finite number ≥ 0 (0 = shadow-test every light)");
     return s;
 }
 

@@ -31,6 +31,7 @@ struct PathSettings {
     int light_samples = 1;          // shadow rays per vertex (stratified)
     int branching_factor = 1;       // continuation rays at the first surface (stochastic ray tracing)
     float clamp_indirect = 0.f;     // > 0: clamp indirect contributions' max component (biased); 0 = off
+    float ward_threshold = 0.05f;   // WARD: stop shadow-testing once the untested bound ≤ this × the tested light
 
     static PathSettings from_params(const Params& params);
 };

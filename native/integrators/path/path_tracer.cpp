@@ -67,6 +67,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
     const PathSettings& cfg = m_settings;
     const int k = cfg.light_samples;
     const bool nee_enabled = !lights.empty();
+    const WardLightSampler* ward = m_light_sampler.ward();
     const auto& materials = m_scene.materials();
 
     for (;; ++bounce) {
@@ -93,8 +94,9 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
         // toward light `index` (k shadow rays; with BSDF_ONLY nothing but delta lights is light-sampled).
         auto light_pdf = [&](uint32_t index, float t) {
             if (cfg.light_sampling == LightSampling::BsdfOnly || st.specular) return 0.f;
-            return float(k) * m_light_sampler.nee_pmf(st.origin, index) *
-                   light_pdf_li(lights[index], st.origin, ray.d, t, cfg.light_pdf);
+            const float pmf = ward ? ward->adaptive_pmf(st.origin, index, size_t(st.ward_tested))
+                                   : m_light_sampler.nee_pmf(st.origin, index);
+            return float(k) * pmf * light_pdf_li(lights[index], st.origin, ray.d, t, cfg.light_pdf);
         };
 
         // Area lights are not occluders: any emitting side before the surface adds its radiance.
@@ -134,30 +136,38 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
         const Vec3 wo_local = frame.to_local(wo);
         const Bsdf& bsdf = material.bsdf(backfacing);
 
-        // Named sample dimensions: each is the same sequence dimension for every sample of every pixel.
+        // Named sample dimensions: each is the same sequence dimension for every sample of every pixel, so a
+        // value is drawn only where it is used (skipping one never shifts another).
         const int dim = bounce + st.dim_offset;
-        const float u_select = get_1d(sampler, Dim::LightSelect, dim);
-        const Vec2 u_light = get_2d(sampler, Dim::Light, dim);
+        const bool nee_here = nee_enabled && bsdf.has_non_delta();
+        const float u_select = nee_here && !m_light_sampler.exhaustive() ? get_1d(sampler, Dim::LightSelect, dim) : 0.5f;
+        const Vec2 u_light = nee_here ? get_2d(sampler, Dim::Light, dim) : Vec2{0.5f, 0.5f};
         const Vec2 u_bsdf = get_2d(sampler, Dim::Bsdf, dim);
-        const float u_rr = get_1d(sampler, Dim::Roulette, dim);
-        const float u_lobe = get_1d(sampler, Dim::BsdfLobe, dim);
+        const bool roulette_here = cfg.rr_mode != RouletteMode::Off && bounce + 1 >= cfg.rr_start_bounce;
+        const float u_rr = roulette_here ? get_1d(sampler, Dim::Roulette, dim) : 0.5f;
+        // The discrete choice: which lobe, and for a dielectric (the one lobe that uses it) or a two-sided
+        // hemisphere strategy, which side.
+        const bool discrete_here = bsdf.size() > 1 || (bsdf.flags() & k_bsdf_transmission);
+        const float u_lobe = discrete_here ? get_1d(sampler, Dim::BsdfLobe, dim) : 0.5f;
 
         // Next-event estimation: k stratified shadow rays, each choosing one light (or, for ALL, k for every
         // light). The contribution of light i is f·Li·|cos|/(k·pmf·pdf), MIS-weighted against the continuation.
+        // Returns the sample's visible irradiance share, luminance(Li)·|cos θ|/(k·pdf) (0 if occluded), the
+        // quantity Ward's bounds bound.
         const LightSampleContext ctx{hit.p, ns};
-        auto estimate_light = [&](uint32_t li, float pmf, Vec2 u) {
+        auto estimate_light = [&](uint32_t li, float pmf, Vec2 u) -> double {
             const LightSample ls = light_sample_li(lights[li], ctx, u, cfg.light_pdf);
-            if (!ls.valid() || (cfg.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return;
+            if (!ls.valid() || (cfg.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return 0.0;
             const Vec3 wi_local = frame.to_local(ls.wi);
             // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks).
             const float cos_g = dot(ls.wi, ng);
-            if (cos_g == 0.f || (cos_g > 0.f) != (wi_local.z > 0.f)) return;
+            if (cos_g == 0.f || (cos_g > 0.f) != (wi_local.z > 0.f)) return 0.0;
             const Color f = bsdf.f(wo_local, wi_local) * std::fabs(wi_local.z);
-            if (is_black(f)) return;
+            if (is_black(f)) return 0.0;
             const Vec3 origin = offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng);
             const float tmax = std::isfinite(ls.dist) ? ls.dist * (1.f - 1e-4f) : k_inf;
             ++stats.rays;
-            if (m_scene.occluded(origin, ls.wi, tmax, hit.primitive)) return;
+            if (m_scene.occluded(origin, ls.wi, tmax, hit.primitive)) return 0.0;
             const float density = float(k) * pmf * ls.pdf;
             float w = 1.f;
             if (!ls.is_delta && cfg.light_sampling == LightSampling::Mis)
@@ -166,9 +176,35 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
             if (cfg.clamp_indirect > 0.f && bounce >= 1 && max_component(c) > cfg.clamp_indirect)
                 c *= cfg.clamp_indirect / max_component(c);
             L += c;
+            return double(luminance(ls.Li)) * std::fabs(wi_local.z) / (double(k) * double(ls.pdf));
         };
-        if (nee_enabled && bsdf.has_non_delta()) {
-            if (m_light_sampler.exhaustive()) {
+        int ward_tested = 0;
+        if (nee_here) {
+            if (ward) {
+                // Ward 1991, adaptive shadow testing: lights in decreasing order of their contribution bound are
+                // estimated exactly (every light sample, selection probability 1) until the untested bounds sum
+                // to at most ward_threshold × the visible irradiance found so far; the untested tail is then
+                // estimated without bias by k samples of one tail light ∝ bound (WardList). The stopping index
+                // depends only on lights already tested, so each tested estimate stays unbiased (optional
+                // stopping), and the tail estimate uses fresh numbers.
+                const WardList list = ward->candidates(ctx);
+                double visible = 0.0;
+                size_t tested = 0;
+                while (!list.should_stop(tested, visible, double(cfg.ward_threshold))) {
+                    const uint32_t li = list.candidates()[tested].light;
+                    for (int i = 0; i < k; ++i) visible += estimate_light(li, 1.f, light_sample_u(u_light, uint32_t(i), uint32_t(k)));
+                    ++tested;
+                }
+                ward_tested = int(tested);
+                if (tested < list.size()) {
+                    for (int i = 0; i < k; ++i) {
+                        float q = 0.f;
+                        const size_t j = list.select_tail(tested, light_select_u(u_select, uint32_t(i), uint32_t(k)), &q);
+                        if (q > 0.f && j < list.size())
+                            estimate_light(list.candidates()[j].light, q, light_sample_u(u_light, uint32_t(i), uint32_t(k)));
+                    }
+                }
+            } else if (m_light_sampler.exhaustive()) {
                 for (uint32_t li = 0; li < lights.size(); ++li)
                     for (int i = 0; i < k; ++i) estimate_light(li, 1.f, light_sample_u(u_light, uint32_t(i), uint32_t(k)));
             } else {
@@ -197,9 +233,10 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
             next->eta_scale = st.eta_scale * (bs.is_transmission() ? bs.eta * bs.eta : 1.f);
             next->from = hit.primitive;
             next->origin = ctx;
+            next->ward_tested = ward_tested;
             // Branches draw from their own sample dimensions (else they would repeat each other).
             next->dim_offset = st.dim_offset + j * (cfg.max_bounces + 2);
-            if (cfg.rr_mode != RouletteMode::Off && bounce + 1 >= cfg.rr_start_bounce) {
+            if (roulette_here) {
                 const float survive = cfg.rr_mode == RouletteMode::Albedo
                                           ? std::fmin(1.f, max_component(bsdf.albedo(wo_local)))
                                           : std::fmin(1.f, max_component(next->beta) * float(branches) * next->eta_scale);

@@ -39,6 +39,7 @@ public:
         PrimitiveRef from;       // the triangle the ray leaves (skipped by the intersection)
         LightSampleContext origin;  // the vertex the ray leaves, as light sampling saw it (for MIS)
         int dim_offset = 0;      // added to the bounce for sample dimensions (branches use their own)
+        int ward_tested = 0;     // WARD: how many candidates `origin` shadow-tested (its MIS realisation)
     };
 
 private:
