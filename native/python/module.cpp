@@ -11,6 +11,7 @@
 #include "integrators/integrator.h"
 #include "lights/light.h"
 #include "sampling/sampler.h"
+#include "scene/ray_visibility.h"
 #include "session/session.h"
 
 namespace py = pybind11;
@@ -104,6 +105,14 @@ py::dict capabilities() {
     d["light_types"] = light_types;
     d["material_types"] = material_types;
     d["closure_types"] = closure_types;
+    py::dict instance_flags;  // `instance_flags` bits (scene/ray_visibility.h)
+    instance_flags["CAMERA"] = int(k_ray_camera);
+    instance_flags["DIFFUSE"] = int(k_ray_diffuse);
+    instance_flags["GLOSSY"] = int(k_ray_glossy);
+    instance_flags["TRANSMISSION"] = int(k_ray_transmission);
+    instance_flags["SHADOW"] = int(k_ray_shadow);
+    instance_flags["HOLDOUT"] = int(k_object_holdout);
+    d["instance_flags"] = instance_flags;
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;
