@@ -153,6 +153,26 @@ PYBIND11_MODULE(_native, m) {
             return out;
         },
         py::arg("path"), "An EXR's RGBA as float32 (height, width, 4), row 0 = bottom (Blender's order)");
+    m.def(
+        "read_exr_channels",
+        [](const std::string& path) {
+            int w = 0, h = 0;
+            std::map<std::string, std::vector<float>> channels;
+            {
+                py::gil_scoped_release release;
+                channels = read_exr_channels(path, &w, &h);
+            }
+            py::dict out;
+            for (const auto& [name, data] : channels) {
+                py::array_t<float> a({size_t(h), size_t(w)});
+                std::copy(data.begin(), data.end(), a.mutable_data());
+                out[py::str(name)] = a;
+            }
+            return out;
+        },
+        py::arg("path"),
+        "Every channel of an EXR by name (multilayer: 'ViewLayer.Depth.Z', ...) as float32 (height, width), "
+        "row 0 = bottom");
 
     py::register_exception<InvalidScene>(m, "InvalidScene", PyExc_ValueError);
     py::register_exception<InvalidParameter>(m, "InvalidParameter", PyExc_ValueError);
