@@ -36,7 +36,8 @@ def export_dump(context, directory):
     camera = render_camera(scene)
     warnings = Warnings()
     arrays = export_scene(depsgraph, camera, warnings=warnings)
-    params = to_native_params(scene, camera.evaluated_get(depsgraph).data)
+    camera_eval = camera.evaluated_get(depsgraph)
+    params = to_native_params(scene, camera_eval.data, camera_object=camera_eval, view_layer=context.view_layer)
     write_dump(bpy.path.abspath(directory), arrays, params)
     return warnings.messages
 

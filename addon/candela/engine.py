@@ -4,7 +4,7 @@ import traceback
 
 import bpy
 
-from . import render_loop
+from . import passes, render_loop
 from .export import ExportError
 
 
@@ -29,9 +29,8 @@ class CandelaRenderEngine(bpy.types.RenderEngine):
 
     def update_render_passes(self, scene=None, renderlayer=None):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", 'COLOR')
-        layer_settings = getattr(renderlayer, "candela", None)
-        if layer_settings is not None and layer_settings.use_pass_noise:
-            self.register_pass(scene, renderlayer, "Noise", 1, "X", 'VALUE')
+        for p in passes.enabled_passes(renderlayer):
+            self.register_pass(scene, renderlayer, p.name, p.channels, p.chan_id, p.pass_type)
 
 
 def register():

@@ -4,7 +4,10 @@ Inputs: `scene.candela` (properties.py), render resolution / percentage / border
 camera's data, and command-line overrides. Nothing else builds params.
 """
 
+import numpy as np
+
 from . import cmdline
+from .passes import native_pass_list
 
 
 def frame_size(render):
@@ -48,8 +51,41 @@ def camera_params(camera_data):
     }
 
 
-def to_native_params(scene, camera_data, argv=None):
-    """The params dict for `_native.Session` (argv: for tests; default sys.argv)."""
+def focus_object_distance(camera_matrix, focus_object, subtarget=""):
+    """Cycles' focus distance for a focus object: its origin's (or the bone's head's) distance along the camera's view
+    axis, |dot(view_dir, target − camera)|."""
+    m = np.array(camera_matrix, np.float64)
+    view = -m[:3, 2] / max(np.linalg.norm(m[:3, 2]), 1e-30)   # the camera looks down its −Z axis
+    target = np.array(focus_object.matrix_world, np.float64)
+    if subtarget and focus_object.type == 'ARMATURE' and focus_object.pose is not None:
+        bone = focus_object.pose.bones.get(subtarget)
+        if bone is not None:
+            target = target @ np.array(bone.matrix, np.float64)
+    return float(abs(np.dot(view, target[:3, 3] - m[:3, 3])))
+
+
+def dof_params(camera_data, camera_object=None):
+    """Depth of field as Blender's camera holds it (Camera > Depth of Field); the native side turns the f-stop into
+    Cycles' aperture radius. `camera_object` (evaluated) is needed for a focus object."""
+    dof = camera_data.dof
+    if not dof.use_dof:
+        return {"use_dof": False}
+    focus = float(dof.focus_distance)
+    if dof.focus_object is not None and camera_object is not None:
+        focus = focus_object_distance(camera_object.matrix_world, dof.focus_object, dof.focus_subtarget)
+    return {
+        "use_dof": True,
+        "focus_distance": focus,
+        "aperture_fstop": float(dof.aperture_fstop),
+        "aperture_blades": int(dof.aperture_blades),
+        "aperture_rotation": float(dof.aperture_rotation),
+        "aperture_ratio": float(dof.aperture_ratio),
+    }
+
+
+def to_native_params(scene, camera_data, argv=None, camera_object=None, view_layer=None):
+    """The params dict for `_native.Session` (argv: for tests; default sys.argv). `camera_object` (the evaluated
+    camera) resolves a depth-of-field focus object; `view_layer` gives the render passes to write."""
     settings = scene.candela
     render = scene.render
     width, height = frame_size(render)
@@ -85,6 +121,9 @@ def to_native_params(scene, camera_data, argv=None):
         "film_transparent": bool(render.film_transparent),
     }
     params.update(camera_params(camera_data))
+    params.update(dof_params(camera_data, camera_object))
+    if view_layer is not None:
+        params["passes"] = native_pass_list(view_layer)
     params.update(cmdline.overrides(argv))
     if settings.use_animated_seed:
         # Deterministic per frame on every farm worker (never wall-clock based).

@@ -119,6 +119,9 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
 
 
 class CandelaViewLayerSettings(bpy.types.PropertyGroup):
+    use_pass_albedo: BoolProperty(
+        name="Albedo", description="Directional albedo (reflectance) of the first surface the camera sees, averaged "
+        "over the pixel's samples (pass 'Albedo', for denoisers and compositing)", default=False)
     use_pass_noise: BoolProperty(
         name="Noise", description="Per-pixel estimated standard error of the pixel's luminance (pass 'Noise')",
         default=False)

@@ -67,7 +67,7 @@ def status_line(integrator, progress):
 
 
 def _result_passes(result):
-    """The result's passes by name (Combined, plus Noise when the view layer asks for it)."""
+    """The result's passes by name (Combined, plus those the view layer asks for: passes.py)."""
     return {render_pass.name: render_pass for render_pass in result.layers[0].passes}
 
 
@@ -178,7 +178,8 @@ def render_frame(engine, depsgraph, background=False):
         # Cancelled while exporting: still hand Blender a (blank) result, never none at all.
         engine.end_result(engine.begin_result(0, 0, width, height, layer=layer))
         return None
-    params = to_native_params(scene, camera.original.evaluated_get(depsgraph).data)
+    camera_eval = camera.original.evaluated_get(depsgraph)
+    params = to_native_params(scene, camera_eval.data, camera_object=camera_eval, view_layer=depsgraph.view_layer)
     engine.update_stats("", "Building scene")
     session = nat.Session(arrays, params)
     if (session.width, session.height) != (width, height):

@@ -18,6 +18,7 @@ CLOSURE_TYPES = {"DIFFUSE": 0, "GLOSSY": 1, "GLASS": 2, "REFRACTION": 3, "TRANSL
                  "PRINCIPLED": 6}
 DISTRIBUTIONS = {"GGX": 0, "BECKMANN": 1}
 LIGHT_TYPES = {"POINT": 0, "SPOT": 1, "SUN": 2, "AREA": 3}
+INSTANCE_FLAGS = {"CAMERA": 1, "DIFFUSE": 2, "GLOSSY": 4, "TRANSMISSION": 8, "SHADOW": 16, "HOLDOUT": 32}
 INTEGRATORS = ("PATH",)
 
 
@@ -48,6 +49,11 @@ def material_types():
 
 def light_types():
     return dict(_cap("light_types", LIGHT_TYPES))
+
+
+def instance_flags():
+    """Bits of the `instance_flags` array: the ray types an object is visible to, and holdout."""
+    return dict(_cap("instance_flags", INSTANCE_FLAGS))
 
 
 def integrators():

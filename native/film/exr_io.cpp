@@ -62,4 +62,35 @@ std::vector<float> read_exr_rgba(const std::string& path, int* width, int* heigh
     }
 }
 
+std::map<std::string, std::vector<float>> read_exr_channels(const std::string& path, int* width, int* height) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+        std::map<std::string, std::vector<float>> top_down;
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+            top_down[it.name()].assign(size_t(w) * h, 0.f);
+        Imf::FrameBuffer fb;
+        const size_t xs = sizeof(float), ys = size_t(w) * xs;
+        for (auto& [name, buf] : top_down) {
+            char* base = reinterpret_cast<char*>(buf.data()) - dw.min.x * xs - dw.min.y * ys;
+            fb.insert(name.c_str(), Imf::Slice(Imf::FLOAT, base, xs, ys));
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        std::map<std::string, std::vector<float>> out;
+        for (auto& [name, buf] : top_down) {
+            std::vector<float>& o = out[name];
+            o.resize(buf.size());
+            for (int y = 0; y < h; ++y)
+                std::copy_n(buf.data() + size_t(h - 1 - y) * w, w, o.data() + size_t(y) * w);
+        }
+        *width = w;
+        *height = h;
+        return out;
+    } catch (const std::exception& e) {
+        throw InvalidScene("could not read '" + path + "': " + e.what());
+    }
+}
+
 }  // namespace candela

@@ -1,6 +1,7 @@
 // Reading and writing images as OpenEXR (the only OpenEXR include in Candela).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -12,5 +13,9 @@ void write_exr_rgba(const std::string& path, int width, int height, const std::v
 
 /// Reads an EXR's R, G, B (and A, 1 if absent) as float32 rows bottom to top. Throws InvalidScene.
 std::vector<float> read_exr_rgba(const std::string& path, int* width, int* height);
+
+/// Reads every channel of an EXR by its full name (a multilayer EXR's "ViewLayer.Depth.Z", …) as float32 rows
+/// bottom to top. Throws InvalidScene.
+std::map<std::string, std::vector<float>> read_exr_channels(const std::string& path, int* width, int* height);
 
 }  // namespace candela

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/parallel.h"
+#include "film/aov_film.h"
 
 namespace candela {
 
@@ -37,6 +38,7 @@ struct RenderContext {
     const CancelToken& cancel;
     RenderCounters& counters;
     int threads = 0;
+    AovFilm* aovs = nullptr;  // data passes to write (camera-driven integrators), or none
 };
 
 /// Per-thread statistics gathered by a tracer, folded into RenderCounters once per tile.

@@ -28,11 +28,13 @@ namespace candela {
 
 inline constexpr int k_min_noise_samples = 16;
 
-/// Tracer: `Color Li(const Ray&, Sampler&, PathStats&, float* alpha) const`.
+/// Tracer: `Color Li(const Ray&, Sampler&, PathStats&, float* alpha, AovSample* aov) const` (aov: null, or
+/// where the tracer records the first surface the camera ray sees; integrators/camera_hit.h).
 template <typename Tracer>
 void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, const PixelSampling& ps,
                         const Tracer& tracer) {
     const Camera& camera = scene.camera();
+    AovFilm* const aovs = ctx.aovs && !ctx.aovs->empty() ? ctx.aovs : nullptr;
     using clock = std::chrono::steady_clock;
     auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
     ctx.counters.samples_total = ps.samples;
@@ -58,6 +60,7 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
             [&](size_t tile_index) {
                 const Tile& tile = film.tiles()[tile_index];
                 std::vector<PixelAccum> accum(size_t(tile.width()) * tile.height());
+                std::vector<AovAccum> aov_accum(aovs ? accum.size() : 0);
                 Sampler sampler = make_sampler(ps.sampler, ps.seed, ps.samples);
                 PathStats stats;
                 for (int y = tile.y0; y < tile.y1; ++y) {
@@ -68,9 +71,11 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                         for (int s = begin; s < end; ++s) {
                             start_pixel_sample(sampler, uint32_t(fx), uint32_t(fy), uint32_t(s));
                             const Vec2 offset = ps.filter.sample(get_pixel_2d(sampler));
-                            const Ray ray = camera.generate_ray({fx + 0.5f + offset.x, fy + 0.5f + offset.y});
+                            const Vec2 u_lens = camera.has_aperture() ? get_2d(sampler, Dim::Lens) : Vec2{0.5f, 0.5f};
+                            const Ray ray = camera.generate_ray({fx + 0.5f + offset.x, fy + 0.5f + offset.y}, u_lens);
                             float alpha = 1.f;
-                            Color L = tracer.Li(ray, sampler, stats, &alpha);
+                            AovSample aov;
+                            Color L = tracer.Li(ray, sampler, stats, &alpha, aovs ? &aov : nullptr);
                             ++stats.paths;
                             // Non-finite or negative radiance never reaches the film: drop and count it.
                             // Debug builds stop right where it arises instead, naming the sample.
@@ -83,10 +88,12 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                                 L = Color(0.f);
                             }
                             acc.add(L, alpha);
+                            if (aovs) aov_accum[size_t(y - tile.y0) * tile.width() + (x - tile.x0)].add(aov, s == 0);
                         }
                     }
                 }
                 film.add_tile(tile_index, accum);
+                if (aovs) aovs->add_tile(tile_index, aov_accum);
                 stats.flush(ctx.counters);
             },
             &ctx.cancel);

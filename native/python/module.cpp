@@ -11,6 +11,7 @@
 #include "integrators/integrator.h"
 #include "lights/light.h"
 #include "sampling/sampler.h"
+#include "scene/ray_visibility.h"
 #include "session/session.h"
 
 namespace py = pybind11;
@@ -104,6 +105,14 @@ py::dict capabilities() {
     d["light_types"] = light_types;
     d["material_types"] = material_types;
     d["closure_types"] = closure_types;
+    py::dict instance_flags;  // `instance_flags` bits (scene/ray_visibility.h)
+    instance_flags["CAMERA"] = int(k_ray_camera);
+    instance_flags["DIFFUSE"] = int(k_ray_diffuse);
+    instance_flags["GLOSSY"] = int(k_ray_glossy);
+    instance_flags["TRANSMISSION"] = int(k_ray_transmission);
+    instance_flags["SHADOW"] = int(k_ray_shadow);
+    instance_flags["HOLDOUT"] = int(k_object_holdout);
+    d["instance_flags"] = instance_flags;
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;
@@ -144,6 +153,26 @@ PYBIND11_MODULE(_native, m) {
             return out;
         },
         py::arg("path"), "An EXR's RGBA as float32 (height, width, 4), row 0 = bottom (Blender's order)");
+    m.def(
+        "read_exr_channels",
+        [](const std::string& path) {
+            int w = 0, h = 0;
+            std::map<std::string, std::vector<float>> channels;
+            {
+                py::gil_scoped_release release;
+                channels = read_exr_channels(path, &w, &h);
+            }
+            py::dict out;
+            for (const auto& [name, data] : channels) {
+                py::array_t<float> a({size_t(h), size_t(w)});
+                std::copy(data.begin(), data.end(), a.mutable_data());
+                out[py::str(name)] = a;
+            }
+            return out;
+        },
+        py::arg("path"),
+        "Every channel of an EXR by name (multilayer: 'ViewLayer.Depth.Z', ...) as float32 (height, width), "
+        "row 0 = bottom");
 
     py::register_exception<InvalidScene>(m, "InvalidScene", PyExc_ValueError);
     py::register_exception<InvalidParameter>(m, "InvalidParameter", PyExc_ValueError);

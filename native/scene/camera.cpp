@@ -1,5 +1,6 @@
 #include "scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -60,27 +61,65 @@ Camera::Camera(const Params& params, const Affine& camera_to_world) : m_to_world
     m_top += dy;
     // fov spans the viewplane's ±1 axis: 2·atan(0.5·sensor/lens/aspect).
     m_tan_half_fov = (0.5f * sensor / lens) / (m_ortho ? 1.f : aspect);
+
+    // Depth of field (Blender's Camera > Depth of Field; Cycles' blender_camera_from_object). The keys are read
+    // even when it is off, so they never count as unknown.
+    const bool use_dof = params.get<bool>("use_dof", false);
+    const float fstop = params.get<float>("aperture_fstop", 2.8f);
+    const float ratio = params.get<float>("aperture_ratio", 1.f);
+    const float focus = params.get<float>("focus_distance", 10.f);
+    const int blades = params.get<int>("aperture_blades", 0);
+    const float rotation = params.get<float>("aperture_rotation", 0.f);
+    if (use_dof) {
+        if (!(fstop > 0.f) || !std::isfinite(fstop))
+            throw InvalidParameter("camera aperture_fstop must be positive (got " + std::to_string(fstop) + ")");
+        if (!(ratio > 0.f) || !std::isfinite(ratio))
+            throw InvalidParameter("camera aperture_ratio must be positive (got " + std::to_string(ratio) + ")");
+        if (!(focus >= 0.f) || !std::isfinite(focus))
+            throw InvalidParameter("camera focus_distance must be a finite distance >= 0 (got " + std::to_string(focus) + ")");
+        if (blades < 0) throw InvalidParameter("camera aperture_blades must not be negative");
+        if (!std::isfinite(rotation)) throw InvalidParameter("camera aperture_rotation must be finite");
+        m_focus_distance = std::max(focus, 1e-5f);  // Cycles' floor
+        // The lens is in millimetres, the scene in metres (Cycles assumes 1 unit = 1 m here).
+        m_aperture.radius = m_ortho ? 1.f / (2.f * fstop) : (lens * 1e-3f) / (2.f * fstop);
+        m_aperture.blades = blades;
+        m_aperture.rotation = rotation;
+        m_aperture.inv_ratio = 1.f / ratio;
+    }
 }
 
 void Camera::translate(const Vec3& offset) {
     for (int r = 0; r < 3; ++r) m_to_world.m[r][3] += offset[r];
 }
 
-Ray Camera::generate_ray(Vec2 raster) const {
+Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {
     const float sx = m_left + (raster.x / m_width) * (m_right - m_left);
     const float sy = m_bottom + (raster.y / m_height) * (m_top - m_bottom);
+    const bool dof = !m_aperture.is_pinhole();
+    const Vec2 lens = dof ? m_aperture.sample(u_lens) : Vec2{0.f, 0.f};
     Ray ray;
+    ray.type = k_ray_camera;
     if (m_ortho) {
-        // Blender's orthographic camera starts rays on the clip_start plane.
-        ray.o = m_to_world.point(Vec3(sx, sy, -m_clip_start));
-        ray.d = normalize(m_to_world.vector(Vec3(0.f, 0.f, -1.f)));
-        ray.tmin = 0.f;
-        ray.tmax = m_clip_end - m_clip_start;
-    } else {
-        const Vec3 d_cam = normalize(Vec3(sx * m_tan_half_fov, sy * m_tan_half_fov, -1.f));
-        ray.o = m_to_world.translation();
+        // Blender's orthographic camera starts rays on the clip_start plane; with depth of field they leave from
+        // the aperture around that point and meet again focus_distance further on.
+        const Vec3 o_cam(sx + lens.x, sy + lens.y, -m_clip_start);
+        const Vec3 d_cam = dof ? normalize(Vec3(-lens.x, -lens.y, -m_focus_distance)) : Vec3(0.f, 0.f, -1.f);
+        ray.o = m_to_world.point(o_cam);
         ray.d = normalize(m_to_world.vector(d_cam));
-        // Clip distances are measured along the view axis.
+        ray.tmin = 0.f;
+        ray.tmax = (m_clip_end - m_clip_start) / -d_cam.z;
+    } else {
+        Vec3 d_cam(sx * m_tan_half_fov, sy * m_tan_half_fov, -1.f);
+        Vec3 o_cam(0.f);
+        if (dof) {
+            // The pinhole ray meets the plane of focus (z = −focus_distance) at d_cam·focus_distance.
+            o_cam = Vec3(lens.x, lens.y, 0.f);
+            d_cam = d_cam * m_focus_distance - o_cam;
+        }
+        d_cam = normalize(d_cam);
+        ray.o = m_to_world.point(o_cam);
+        ray.d = normalize(m_to_world.vector(d_cam));
+        // Clip distances are measured along the view axis (the rays start on the z = 0 plane).
         const float inv_cos = 1.f / -d_cam.z;
         ray.tmin = m_clip_start * inv_cos;
         ray.tmax = m_clip_end * inv_cos;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "scene/ray_query.h"
 #include "scene/scene_arrays.h"
 
 namespace candela {
@@ -21,6 +22,7 @@ struct Scene::MeshShading {
 /// What a top-level Embree geometry id stands for.
 struct Scene::Placement {
     uint32_t mesh = 0;
+    uint32_t pass_index = 0;  // Blender's object pass index (the IndexOB pass)
     bool instanced = false;
     Affine normal_to_world;  // cofactor matrix (instances only)
     int32_t light_base = -1; // light index of the mesh's first emissive triangle in this placement
@@ -38,30 +40,6 @@ Affine camera_matrix(const SceneArrays& arrays) {
         for (int r = 0; r < 3; ++r) m.m[r][c] /= len;
     }
     return m;
-}
-
-/// Embree's per-query context plus the triangles the query must ignore. The context filter runs only when
-/// a query sets one (filter == nullptr costs nothing).
-struct SkipContext {
-    RTCIntersectContext context;
-    PrimitiveRef skip[2];
-};
-
-void skip_filter(const RTCFilterFunctionNArguments* args) {
-    const auto* ctx = reinterpret_cast<const SkipContext*>(args->context);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] == 0) continue;
-        const PrimitiveRef hit{RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i),
-                               RTCHitN_instID(args->hit, args->N, i, 0)};
-        if (hit == ctx->skip[0] || hit == ctx->skip[1]) args->valid[i] = 0;
-    }
-}
-
-void init_context(SkipContext* c, const PrimitiveRef& a, const PrimitiveRef& b) {
-    rtcInitIntersectContext(&c->context);
-    c->skip[0] = a;
-    c->skip[1] = b;
-    if (a.valid() || b.valid()) c->context.filter = &skip_filter;
 }
 
 bool progress_monitor(void* ptr, double) {
@@ -96,6 +74,12 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     const float* instance_xf = arrays.get("instance_transform").data<float>();
     const size_t mesh_count = arrays.rows("mesh_tri_start") - 1;
     const size_t instance_count = arrays.rows("instance_mesh");
+    const Array* flags_arr = arrays.find("instance_flags");
+    const Array* pass_index_arr = arrays.find("instance_pass_index");
+    if (const Array* h = arrays.find("material_holdout")) {
+        m_material_holdout.assign(h->data<float>(), h->data<float>() + h->count());
+        for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
+    }
 
     // Vertex range and use count of every mesh.
     std::vector<MeshRange> ranges(mesh_count);
@@ -200,6 +184,11 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
 
     // High-quality builds use spatial splits (SBVH), which pay off many times over for large
     // triangles such as walls and floors: 2.4x the sample rate on the Cornell box.
+    auto set_object_flags = [&](unsigned id, uint8_t flags) {
+        if (m_object_flags.size() <= id) m_object_flags.resize(id + 1, k_object_default);
+        m_object_flags[id] = flags;
+    };
+
     m_top = EmbreeScene(rtcNewScene(m_device.get()));
     rtcSetSceneBuildQuality(m_top.get(), RTC_BUILD_QUALITY_HIGH);
     rtcSetSceneFlags(m_top.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
@@ -219,6 +208,10 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             throw InvalidScene("instance " + std::to_string(i) + " has a degenerate (zero-scale) transform");
         Placement pl;
         pl.mesh = m;
+        pl.pass_index = pass_index_arr ? pass_index_arr->data<uint32_t>()[i] : 0u;
+        const uint8_t flags = flags_arr ? flags_arr->data<uint8_t>()[i] : uint8_t(k_object_default);
+        m_has_holdouts |= (flags & k_object_holdout) != 0;
+        m_hidden_from |= ~flags & k_ray_all;
         const size_t n = ranges[m].tri_end - ranges[m].tri_begin;
         m_stats.instanced_triangles += n;
         if (uses[m] == 1) {
@@ -233,6 +226,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             if (m_placements.size() <= id) m_placements.resize(id + 1);
             pl.light_base = add_triangle_lights(m, xf, m_shading[m]);
             m_placements[id] = pl;
+            set_object_flags(id, flags);
         } else {
             if (mesh_scene[m] < 0) {
                 m_shading[m] = make_shading(m, nullptr);
@@ -262,6 +256,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             pl.light_base = add_triangle_lights(m, xf, m_shading[m]);
             if (m_placements.size() <= id) m_placements.resize(id + 1);
             m_placements[id] = pl;
+            set_object_flags(id, flags);
             ++m_stats.instances;
         }
     }
@@ -289,9 +284,11 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     m_lights.finalize(m_radius);
 }
 
+uint32_t Scene::pass_index(const SurfaceHit& hit) const { return m_placements[hit.object].pass_index; }
+
 bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip) const {
-    SkipContext context;
-    init_context(&context, skip, {});
+    RayQueryContext context;
+    init_ray_query(&context, skip, {}, ray.type, m_object_flags.data(), (m_hidden_from & ray.type) != 0);
     RTCRayHit rh;
     rh.ray.org_x = ray.o.x;
     rh.ray.org_y = ray.o.y;
@@ -311,7 +308,8 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
     const bool via_instance = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
-    const Placement& pl = m_placements[via_instance ? rh.hit.instID[0] : rh.hit.geomID];
+    const uint32_t object = via_instance ? rh.hit.instID[0] : rh.hit.geomID;
+    const Placement& pl = m_placements[object];
     const MeshShading& s = m_shading[pl.mesh];
     const uint32_t prim = rh.hit.primID;
 
@@ -334,6 +332,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     }
     hit->material = s.material[prim];
     hit->primitive = {rh.hit.geomID, prim, rh.hit.instID[0]};
+    hit->object = object;
     const int32_t rank = s.emissive_rank[prim];
     hit->light = (rank >= 0 && pl.light_base >= 0) ? pl.light_base + rank : -1;
     return true;
@@ -341,8 +340,9 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
 
 bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from,
                      const PrimitiveRef& skip_to) const {
-    SkipContext context;
-    init_context(&context, skip_from, skip_to);
+    RayQueryContext context;
+    init_ray_query(&context, skip_from, skip_to, k_ray_shadow, m_object_flags.data(),
+                   (m_hidden_from & k_ray_shadow) != 0);
     RTCRay r;
     r.org_x = o.x;
     r.org_y = o.y;

@@ -16,6 +16,7 @@
 #include "lights/light.h"
 #include "scene/camera.h"
 #include "scene/embree_device.h"
+#include "scene/ray_visibility.h"
 #include "scene/surface_hit.h"
 
 namespace candela {
@@ -38,9 +39,11 @@ public:
     Scene& operator=(const Scene&) = delete;
 
     /// Closest surface hit along the ray within (ray.tmin, ray.tmax), ignoring the triangle `skip` (the one
-    /// the ray leaves from: with the scale-relative origin offset this removes self-intersection).
+    /// the ray leaves from: with the scale-relative origin offset this removes self-intersection) and the objects
+    /// invisible to the ray's type (ray.type).
     bool intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip = {}) const;
-    /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the triangles at both ends.
+    /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the triangles at both ends and the
+    /// objects invisible to shadow rays.
     bool occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from = {},
                   const PrimitiveRef& skip_to = {}) const;
     /// Closest emitting side of an area light along the ray before tmax: its index and distance.
@@ -51,6 +54,16 @@ public:
     const LightSet& lights() const { return m_lights; }
     float radius() const { return m_radius; }
     const SceneStats& stats() const { return m_stats; }
+
+    /// Holdout weight of the surface hit (Cycles: 1 for a holdout object, else the material's Holdout closure
+    /// weight): alpha loses this much where the camera sees the surface.
+    float holdout(const SurfaceHit& hit) const {
+        if (m_object_flags[hit.object] & k_object_holdout) return 1.f;
+        return m_material_holdout.empty() ? 0.f : m_material_holdout[hit.material];
+    }
+    bool has_holdouts() const { return m_has_holdouts; }
+    /// Blender's pass index of the object hit (the IndexOB pass).
+    uint32_t pass_index(const SurfaceHit& hit) const;
     /// Embree scene handle, for benchmarks that shoot raw rays.
     RTCScene embree_scene() const { return m_top.get(); }
 
@@ -64,6 +77,10 @@ private:
     std::vector<EmbreeScene> m_mesh_scenes;  // one per instanced mesh
     std::vector<MeshShading> m_shading;      // per mesh (world space if flattened)
     std::vector<Placement> m_placements;     // per top-level geometry id
+    std::vector<uint8_t> m_object_flags;     // per top-level geometry id: ObjectFlag bits
+    std::vector<float> m_material_holdout;   // per material, or empty (no Holdout closures)
+    bool m_has_holdouts = false;
+    uint32_t m_hidden_from = 0;              // ray types some object is invisible to (they need the filter)
     Camera m_camera;
     std::vector<Material> m_materials;
     LightSet m_lights;

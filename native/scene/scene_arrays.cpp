@@ -17,8 +17,11 @@ const std::vector<ArraySpec>& array_schema() {
         {"mesh_tri_start", ElemType::U32, {-1}, true},
         {"instance_mesh", ElemType::U32, {-1}, true},
         {"instance_transform", ElemType::F32, {-1, 4, 4}, true},
+        {"instance_flags", ElemType::U8, {-1}, false},
+        {"instance_pass_index", ElemType::U32, {-1}, false},
         {"material_type", ElemType::U32, {-1}, true},
         {"materials", ElemType::F32, {-1, -1}, true},
+        {"material_holdout", ElemType::F32, {-1}, false},
         {"closure_material", ElemType::U32, {-1}, false},
         {"closure_type", ElemType::U32, {-1}, false},
         {"closure_params", ElemType::F32, {-1, -1}, false},
@@ -162,6 +165,26 @@ void SceneArrays::validate() const {
         if (im[i] + 1 >= M1)
             throw InvalidScene("instance_mesh[" + std::to_string(i) + "] = " + std::to_string(im[i]) +
                                " but there are only " + std::to_string(M1 - 1) + " meshes");
+    for (const char* name : {"instance_flags", "instance_pass_index"})
+        if (has(name) && rows(name) != I)
+            throw InvalidScene(std::string("scene array '") + name + "' has " + std::to_string(rows(name)) +
+                               " rows, expected " + std::to_string(I) + " (one per instance)");
+    if (const Array* f = find("instance_flags"))
+        for (size_t i = 0; i < I; ++i)
+            if (f->data<uint8_t>()[i] > 63)
+                throw InvalidScene("instance_flags[" + std::to_string(i) + "] = " + std::to_string(f->data<uint8_t>()[i]) +
+                                   " has unknown bits (capabilities()['instance_flags'] lists them)");
+    if (const Array* h = find("material_holdout")) {
+        if (rows("material_holdout") != K)
+            throw InvalidScene("scene array 'material_holdout' has " + std::to_string(rows("material_holdout")) +
+                               " rows, expected " + std::to_string(K) + " (one per material)");
+        for (size_t i = 0; i < K; ++i) {
+            const float w = h->data<float>()[i];
+            if (!(w >= 0.f && w <= 1.f))
+                throw InvalidScene("material_holdout[" + std::to_string(i) + "] = " + std::to_string(w) +
+                                   " must be a weight in [0, 1]");
+        }
+    }
     if (has("lights") != has("light_type") || rows("lights") != rows("light_type"))
         throw InvalidScene("'lights' and 'light_type' must be given together with the same number of rows");
 }

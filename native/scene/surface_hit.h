@@ -24,6 +24,7 @@ struct SurfaceHit {
     uint32_t material = 0;
     int32_t light = -1;  // index in the LightSet if the triangle emits, else −1
     PrimitiveRef primitive;  // the triangle hit
+    uint32_t object = 0;     // top-level object (Embree geometry id) the triangle belongs to
 };
 
 }  // namespace candela

@@ -37,6 +37,7 @@ Session::Session(SceneArrays arrays, Params params)
                                " render needs about " + std::to_string(int(bytes / 1e9)) + " GB of film memory");
     m_threads = resolve_thread_count(m_params.get<int>("threads", 0));
     m_film = std::make_unique<Film>(x1 - x0, y1 - y0, x0, y0, m_params.get<int>("tile_size", 32));
+    m_aovs = std::make_unique<AovFilm>(*m_film, split_pass_list(m_params.get<std::string>("passes", "")));
     m_integrator = make_integrator(m_params);
     m_counters.samples_total = m_integrator->samples_per_pixel();
     for (const auto& key : m_params.unused_keys())
@@ -73,7 +74,7 @@ void Session::run() {
             m_render_start = t1;
             if (scene.lights().empty()) m_log.push_back("the scene has no lights and a black world: the image is black");
         }
-        RenderContext ctx{m_cancel, m_counters, m_threads};
+        RenderContext ctx{m_cancel, m_counters, m_threads, m_aovs.get()};
         m_integrator->render(scene, *m_film, ctx);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
         std::lock_guard<std::mutex> lock(m_mutex);
@@ -162,7 +163,11 @@ void Session::add_log(std::string message) {
     m_log.push_back(std::move(message));
 }
 
-std::vector<std::pair<std::string, int>> Session::pass_names() { return {{"Combined", 4}, {"Noise", 1}}; }
+std::vector<std::pair<std::string, int>> Session::pass_names() {
+    std::vector<std::pair<std::string, int>> names = {{"Combined", 4}, {"Noise", 1}};
+    for (const auto& spec : AovFilm::pass_specs()) names.push_back(spec);
+    return names;
+}
 
 std::vector<float> Session::get_pass(const std::string& name, int* channels) const {
     if (name == "Combined") {
@@ -173,8 +178,7 @@ std::vector<float> Session::get_pass(const std::string& name, int* channels) con
         *channels = 1;
         return m_film->noise();
     }
-    *channels = 0;
-    return {};
+    return m_aovs->get(name, channels);
 }
 
 }  // namespace candela

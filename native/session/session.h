@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/params.h"
+#include "film/aov_film.h"
 #include "film/film.h"
 #include "integrators/integrator.h"
 #include "scene/scene_arrays.h"
@@ -61,7 +62,8 @@ public:
 
     int width() const { return m_film->width(); }
     int height() const { return m_film->height(); }
-    /// Pass names get_pass understands and their channel counts.
+    /// Pass names get_pass understands and their channel counts (it returns a data pass only when the `passes`
+    /// param asked for it).
     static std::vector<std::pair<std::string, int>> pass_names();
     /// A pass as float32 rows bottom to top, or empty if the name is unknown.
     std::vector<float> get_pass(const std::string& name, int* channels) const;
@@ -72,6 +74,7 @@ private:
     std::unique_ptr<SceneArrays> m_arrays;  // released once the scene is built
     Params m_params;
     std::unique_ptr<Film> m_film;
+    std::unique_ptr<AovFilm> m_aovs;  // the data passes asked for by the `passes` param
     std::unique_ptr<Integrator> m_integrator;
     CancelToken m_cancel;
     RenderCounters m_counters;

@@ -7,6 +7,7 @@ Returns None when `test_break()` turned True; raises ExportError for scenes that
 
 import numpy as np
 
+from .. import schema
 from .camera import camera_to_world, render_camera
 from .common import ExportError, Warnings
 from .geometry import GeometryTable
@@ -26,6 +27,45 @@ def _hidden_for_render(inst):
     return owner.original.hide_render
 
 
+VISIBILITY = (("CAMERA", "visible_camera"), ("DIFFUSE", "visible_diffuse"), ("GLOSSY", "visible_glossy"),
+              ("TRANSMISSION", "visible_transmission"), ("SHADOW", "visible_shadow"))
+
+
+def object_flags(inst, view_layer, bits):
+    """`instance_flags` of one instance, as Cycles syncs an object: ray visibility is the instance's AND its
+    instancer's (Object > Visibility > Ray Visibility), holdout is the instancer's (or the object's own) holdout in
+    this view layer (Object > Visibility > Holdout, or a holdout collection)."""
+    owner = inst.parent if inst.is_instance and inst.parent is not None else inst.object
+    obs = (inst.object, owner) if owner is not inst.object else (inst.object,)
+    flags = 0
+    for name, attr in VISIBILITY:
+        if all(getattr(o, attr, True) for o in obs):
+            flags |= bits[name]
+    if _holdout(owner, view_layer):
+        flags |= bits["HOLDOUT"]
+    return flags
+
+
+def _holdout(owner, view_layer):
+    """The object's own holdout, or its collection's in `view_layer` (an original view layer: holdout_get on an
+    evaluated object and view layer answers False in 3.4.1, even for an object marked holdout)."""
+    if owner.is_holdout:
+        return True
+    if view_layer is None:
+        return False
+    try:
+        return bool(owner.original.holdout_get(view_layer=view_layer))
+    except (TypeError, RuntimeError, ReferenceError):
+        return False
+
+
+def _original_view_layer(depsgraph):
+    layer = getattr(depsgraph, "view_layer", None)
+    if layer is None:
+        return None
+    return depsgraph.scene.original.view_layers.get(layer.name)
+
+
 def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None):
     """Export the evaluated scene seen through `camera` (an original camera object, see render_camera)."""
     warnings = warnings if warnings is not None else Warnings()
@@ -33,6 +73,8 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None)
     materials = MaterialTable(warnings)
     geometry = GeometryTable(materials)
     lights = LightTable(warnings)
+    bits = schema.instance_flags()
+    view_layer = _original_view_layer(depsgraph)
 
     for i, inst in enumerate(depsgraph.object_instances):
         if i % BREAK_EVERY == BREAK_EVERY - 1:
@@ -50,7 +92,7 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None)
         if ob.type == 'LIGHT':
             lights.add(ob.data, matrix)
         elif inst.show_self:
-            geometry.add(ob, matrix)
+            geometry.add(ob, matrix, flags=object_flags(inst, view_layer, bits), pass_index=ob.pass_index)
 
     if geometry.triangle_count == 0:
         raise ExportError(f"scene '{scene.name}' has nothing to render: no visible mesh triangles")

@@ -18,6 +18,8 @@ class GeometryTable:
         self._by_key = {}           # dedup key → mesh index, or -1 for objects without faces
         self.instance_mesh = []
         self.transforms = []
+        self.flags = []             # per instance: `instance_flags` bits (ray visibility, holdout)
+        self.pass_indices = []      # per instance: the object's pass index (IndexOB)
 
     def _key(self, ob, slots):
         # Modified objects get their own evaluated mesh, so their pointer is distinct; linked duplicates share one.
@@ -25,8 +27,9 @@ class GeometryTable:
         data_ptr = ob.data.as_pointer() if ob.type == 'MESH' and ob.data is not None else ob.as_pointer()
         return data_ptr, tuple(m.as_pointer() if m is not None else 0 for m in slots)
 
-    def add(self, ob, matrix):
-        """Add one instance of the evaluated object `ob` with object → world `matrix` ((4, 4) float32)."""
+    def add(self, ob, matrix, flags=0x1F, pass_index=0):
+        """Add one instance of the evaluated object `ob` with object → world `matrix` ((4, 4) float32), its
+        `instance_flags` bits (default: visible to every ray, no holdout) and pass index."""
         # Blender keeps an infinite scale as a huge finite matrix: treat anything beyond 1e30 as not finite.
         if not np.isfinite(matrix).all() or np.abs(matrix).max() > 1e30:
             raise ExportError(f"object '{ob.name}' has a non-finite transform (NaN or Inf in its location, "
@@ -39,6 +42,8 @@ class GeometryTable:
         if index >= 0:
             self.instance_mesh.append(index)
             self.transforms.append(matrix)
+            self.flags.append(flags)
+            self.pass_indices.append(pass_index)
 
     def _add_mesh(self, ob, slots):
         data = read_mesh(ob)
@@ -69,4 +74,6 @@ class GeometryTable:
             "mesh_tri_start": np.concatenate([[0], np.cumsum(tri_counts)]).astype(np.uint32),
             "instance_mesh": np.array(self.instance_mesh, np.uint32),
             "instance_transform": np.array(self.transforms, np.float32).reshape(-1, 4, 4),
+            "instance_flags": np.array(self.flags, np.uint8),
+            "instance_pass_index": np.array(self.pass_indices, np.uint32),
         }

@@ -6,7 +6,8 @@ list: Mix Shader scales its inputs' weights by (1 − fac) and fac, Add Shader c
 one weighted closure, Emission adds radiance, Principled's Alpha mixes with a Transparent closure. Inputs are
 constants; a linked input (a texture, a math node) is not supported yet: its socket value is used, with one warning
 per material naming the node. An unsupported shader node falls back to the material's viewport colour as a diffuse
-closure, with one warning per material naming the node — never silently black.
+closure, with one warning per material naming the node — never silently black. A Holdout node's weight goes to the
+`material_holdout` table (alpha loses it where the camera sees the surface).
 """
 
 import numpy as np
@@ -30,6 +31,7 @@ class _Reader:
     def __init__(self, material, warnings):
         self.material, self.warnings = material, warnings
         self.closures, self.emission = [], (0.0, 0.0, 0.0)
+        self.holdout = 0.0    # Holdout closure weight (Cycles: alpha loses it where the camera sees the surface)
 
     def value(self, node, name):
         socket = node.inputs[name]
@@ -94,6 +96,8 @@ class _Reader:
             self.emission = tuple(e + c * strength for e, c in zip(self.emission, radiance))
         elif kind == "ShaderNodeBsdfPrincipled":
             self.principled(node, weight)
+        elif kind == "ShaderNodeHoldout":
+            self.holdout += sum(weight) / 3.0
         else:
             self.warnings.add(f"Candela: material '{self.material.name}': node '{node.name}' ({kind}) is not "
                               "supported yet; using the material's viewport colour there")
@@ -141,7 +145,7 @@ def read_material(material, warnings):
     reader.walk(surface.links[0].from_socket, (1.0, 1.0, 1.0))
     # A material of pure emission (or all-black closures) must not fall back to the base colour: mark it black.
     return {"base": (0.0, 0.0, 0.0) if not reader.closures else base, "emission": reader.emission,
-            "closures": reader.closures}
+            "closures": reader.closures, "holdout": min(reader.holdout, 1.0)}
 
 
 class MaterialTable:
@@ -183,4 +187,5 @@ class MaterialTable:
             "closure_material": np.array(owners, np.uint32),
             "closure_type": np.array(kinds, np.uint32),
             "closure_params": np.array(params, np.float32).reshape(len(owners), len(closure_columns)),
+            "material_holdout": np.array([m.get("holdout", 0.0) for m in self.rows], np.float32),
         }

@@ -2,18 +2,20 @@
 
 import bpy
 
-from . import compat, light, render, surfaces, view_layer
+from . import compat, light, node_categories, render, surfaces, view_layer, visibility
 
-classes = render.classes + light.classes + surfaces.classes + view_layer.classes
+classes = render.classes + light.classes + surfaces.classes + view_layer.classes + visibility.classes
 
 
 def register():
     for cls in classes:
         bpy.utils.register_class(cls)
     compat.register()
+    node_categories.register()
 
 
 def unregister():
+    node_categories.unregister()
     compat.unregister()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

@@ -14,7 +14,8 @@ EXCLUDE = {
     "MATERIAL_PT_freestyle_line",
 }
 EXCLUDE_PREFIXES = ("VIEWLAYER_PT_freestyle", "DATA_PT_lightprobe", "DATA_PT_context_lightprobe")
-EXTRA = ("EEVEE_MATERIAL_PT_context_material",)   # the material slot list
+EXTRA = ("EEVEE_MATERIAL_PT_context_material",   # the material slot list
+         "DATA_PT_camera_dof", "DATA_PT_camera_dof_aperture")   # depth of field: focus, f-stop, blades, ratio
 
 _added = []   # panels we changed, so unregister undoes exactly that
 

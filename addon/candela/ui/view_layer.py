@@ -1,4 +1,4 @@
-"""View Layer tab: the render passes Candela can write."""
+"""View Layer tab: the render passes Candela can write (passes.py), drawn like Cycles' Passes > Data panel."""
 
 import bpy
 
@@ -13,8 +13,16 @@ class CANDELA_VIEWLAYER_PT_passes(CandelaPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
+        view_layer = context.view_layer
         col = layout.column(heading="Include", align=True)
-        col.prop(context.view_layer.candela, "use_pass_noise")
+        col.prop(view_layer, "use_pass_combined")
+        col.prop(view_layer, "use_pass_z")
+        col.prop(view_layer, "use_pass_normal")
+        col.prop(view_layer.candela, "use_pass_albedo")
+        col = layout.column(heading="Indexes", align=True)
+        col.prop(view_layer, "use_pass_object_index")
+        col = layout.column(heading="Candela", align=True)
+        col.prop(view_layer.candela, "use_pass_noise")
 
 
 classes = (CANDELA_VIEWLAYER_PT_passes,)

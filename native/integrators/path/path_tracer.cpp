@@ -5,6 +5,8 @@
 
 #include "core/frame.h"
 #include "core/math.h"
+#include "integrators/camera_hit.h"
+#include "integrators/ray_types.h"
 #include "sampling/warp.h"
 #include "scene/ray_offset.h"
 
@@ -54,10 +56,12 @@ float continuation_pdf(HemisphereSampling mode, const Bsdf& bsdf, const Vec3& wo
 
 }  // namespace
 
-Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha) const {
+Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov) const {
     Color L(0.f);
     *alpha = 1.f;
-    trace(camera_ray, PathState{}, 0, sampler, stats, L, alpha);
+    PathState st;
+    st.aov = aov;
+    trace(camera_ray, st, 0, sampler, stats, L, alpha);
     return L;
 }
 
@@ -117,6 +121,8 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
             }
             return;
         }
+
+        if (bounce == 0 && !camera_hit(m_scene, ray, hit, st.aov, alpha)) return;  // data passes, holdout
 
         const Material& material = materials[hit.material];
         if (material.is_emissive()) {
@@ -244,7 +250,8 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
                 next->beta /= survive;
             }
             if (is_black(next->beta) || !is_finite(next->beta)) return false;
-            *next_ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng), wi, 0.f, k_inf};
+            *next_ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng), wi, 0.f, k_inf,
+                            continuation_ray_type(bs, ray.type)};
             return true;
         };
         if (branches == 1) {  // the common case: keep looping instead of recursing

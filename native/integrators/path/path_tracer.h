@@ -14,6 +14,7 @@
 // sum. clamp_indirect (off by default) clamps indirect contributions: biased, fewer fireflies.
 #pragma once
 
+#include "film/aov_film.h"
 #include "integrators/path/path_settings.h"
 #include "integrators/render_context.h"
 #include "lights/light_sampler.h"
@@ -27,8 +28,9 @@ public:
     PathTracer(const Scene& scene, const PathSettings& settings, const LightSampler& light_sampler)
         : m_scene(scene), m_settings(settings), m_light_sampler(light_sampler) {}
 
-    /// Radiance arriving along the camera ray; *alpha is 0 when film_transparent and the ray escapes.
-    Color Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha) const;
+    /// Radiance arriving along the camera ray; *alpha is 0 when film_transparent and the ray escapes (and loses
+    /// a holdout's weight); `aov`, if given, receives the data passes of the first surface hit.
+    Color Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov = nullptr) const;
 
     /// How the ray being traced was produced: what the vertex it hits needs for MIS, roulette and dims.
     struct PathState {
@@ -40,6 +42,7 @@ public:
         LightSampleContext origin;  // the vertex the ray leaves, as light sampling saw it (for MIS)
         int dim_offset = 0;      // added to the bounce for sample dimensions (branches use their own)
         int ward_tested = 0;     // WARD: how many candidates `origin` shadow-tested (its MIS realisation)
+        AovSample* aov = nullptr;  // camera ray only: where its first hit's data passes go
     };
 
 private:

@@ -1,0 +1,43 @@
+// The lens aperture of a depth-of-field camera as Cycles 3.4 models it (kernel/camera: camera_sample_aperture):
+// a disk, or a regular polygon of `blades` corners on the unit circle (corners at rotation + (2k + 1)·π/blades,
+// Cycles' orientation), sampled uniformly by area, then squeezed horizontally by 1/ratio (anamorphic bokeh) and
+// scaled by the aperture radius. Blender: Camera > Depth of Field > Aperture (F-Stop, Blades, Rotation, Ratio).
+#pragma once
+
+#include <cmath>
+
+#include "core/math.h"
+#include "core/vec.h"
+#include "sampling/warp.h"
+
+namespace candela {
+
+struct Aperture {
+    float radius = 0.f;    // scene units; 0 = pinhole
+    int blades = 0;        // < 3: a disk
+    float rotation = 0.f;  // radians
+    float inv_ratio = 1.f; // 1 / aperture_ratio
+
+    bool is_pinhole() const { return !(radius > 0.f); }
+
+    /// A point on the aperture (camera-space x, y) from u uniform in [0, 1)²: uniform by area.
+    Vec2 sample(Vec2 u) const {
+        Vec2 p;
+        if (blades < 3) {
+            p = sample_uniform_disk_concentric(u);
+        } else {
+            // The polygon is `blades` congruent triangles (centre, corner k, corner k + 1): pick one uniformly
+            // (equal areas) with the first coordinate, reuse its fraction for the point inside.
+            const float n = float(blades);
+            const float scaled = u.x * n;
+            const float k = std::fmin(std::floor(scaled), n - 1.f);
+            const Vec2 b = sample_uniform_triangle({std::fmin(scaled - k, k_one_minus_epsilon), u.y});
+            const float a0 = rotation + (2.f * k - 1.f) * k_pi / n, a1 = a0 + 2.f * k_pi / n;
+            // Barycentric b0 weighs corner a0, b1 corner a1, the rest the centre (the origin).
+            p = {b.x * std::cos(a0) + b.y * std::cos(a1), b.x * std::sin(a0) + b.y * std::sin(a1)};
+        }
+        return {p.x * inv_ratio * radius, p.y * radius};
+    }
+};
+
+}  // namespace candela
