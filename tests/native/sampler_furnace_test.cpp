@@ -17,14 +17,11 @@ class SamplerFurnace : public ::testing::TestWithParam<std::string> {};
 
 // Emissive sphere, ρ = 0.5, Le = 0.5: L = Le(1 − ρ^(K+2))/(1 − ρ) → 1.
 TEST_P(SamplerFurnace, EmissiveSphereConvergesToOne) {
-    MeshBuilder b;
-    const uint32_t m = b.add_material(Color(0.5f), Color(0.5f));
-    b.add_instance(b.add_sphere(1.f, 64, 32, m));
     const int K = 40;
     Params p = basic_params(16, 16, 256, K);
     p.set("sampler", GetParam());
-    const RenderResult r = render(b.arrays(), p);
-    const double expected = 0.5 * (1.0 - std::pow(0.5, K + 2)) / 0.5;
+    const RenderResult r = render(furnace_scene(FurnaceScene::EmissiveSphere, 64, 32), p);
+    const double expected = furnace_expected(FurnaceScene::EmissiveSphere, K);
     EXPECT_LT(4.0 * r.standard_error, 0.02) << "too few samples for the tolerance";
     EXPECT_NEAR(r.mean_rgb, expected, 0.02);
     for (size_t i = 0; i < r.rgba.size() / 4; ++i) ASSERT_NEAR(r.rgba[4 * i], expected, 0.35) << "pixel " << i;
@@ -32,26 +29,19 @@ TEST_P(SamplerFurnace, EmissiveSphereConvergesToOne) {
 
 // Point light of intensity π at the centre of a sphere of albedo 0.5: L = 1 − ρ^(K+1) (NEE every bounce).
 TEST_P(SamplerFurnace, PointLightInSphereConvergesToOne) {
-    MeshBuilder b;
-    const uint32_t m = b.add_material(Color(0.5f), Color(0.f));
-    b.add_instance(b.add_sphere(1.f, 64, 32, m));
-    b.add_point_light(Vec3(0.f), Color(4.f * k_pi * k_pi));
     const int K = 40;
     Params p = basic_params(16, 16, 128, K);
     p.set("sampler", GetParam());
-    const RenderResult r = render(b.arrays(), p);
-    EXPECT_NEAR(r.mean_rgb, 1.0 - std::pow(0.5, K + 1), 0.02);
+    const RenderResult r = render(furnace_scene(FurnaceScene::PointLight, 64, 32), p);
+    EXPECT_NEAR(r.mean_rgb, furnace_expected(FurnaceScene::PointLight, K), 0.02);
 }
 
 // A sample count that is neither a square nor a power of two (strata fallbacks, Hammersley with N = 27).
 TEST_P(SamplerFurnace, OddSampleCount) {
-    MeshBuilder b;
-    const uint32_t m = b.add_material(Color(0.5f), Color(0.5f));
-    b.add_instance(b.add_sphere(1.f, 64, 32, m));
     Params p = basic_params(16, 16, 27, 12);
     p.set("sampler", GetParam());
-    const RenderResult r = render(b.arrays(), p);
-    const double expected = 1.0 - std::pow(0.5, 14);
+    const RenderResult r = render(furnace_scene(FurnaceScene::EmissiveSphere, 64, 32), p);
+    const double expected = furnace_expected(FurnaceScene::EmissiveSphere, 12);
     EXPECT_NEAR(r.mean_rgb, expected, std::max(4.0 * r.standard_error, 0.01));
 }
 
