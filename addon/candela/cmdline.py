@@ -2,6 +2,9 @@
 
     blender -b scene.blend -E CANDELA -f 1 -- --candela-samples 512 --candela-seed 7
 
+`--candela-memory-limit-mb N` refuses renders predicted to need more than N MB (instead of the machine's available
+memory): a farm task then fails with a clear message rather than swapping or being killed.
+
 Unknown arguments are ignored: the part after `--` belongs to every script in the process.
 """
 
@@ -11,6 +14,7 @@ import sys
 OPTIONS = {
     "--candela-samples": ("samples", int),
     "--candela-seed": ("seed", int),
+    "--candela-memory-limit-mb": ("memory_limit_mb", float),
 }
 
 

@@ -7,7 +7,7 @@ test_break, update_progress, update_stats, report), so tests drive it with a fak
 import time
 
 from . import native
-from .export import Warnings, export_scene, render_camera
+from .export import ExportError, Warnings, export_scene, name_objects, render_camera
 from .params import result_size, to_native_params
 
 POLL_S = 0.05                # wait() timeout: test_break() polled at 20 Hz + native cancel (< 10 ms) keeps Esc under 100 ms
@@ -97,11 +97,12 @@ def _forward_log(engine, session):
         _warn(engine, f"Candela: {message}")
 
 
-def drive(engine, session, layer="", integrator="PATH", background=False, clock=time.monotonic, out=print):
+def drive(engine, session, layer="", integrator="PATH", background=False, clock=time.monotonic, out=print,
+          names=None):
     """Poll a started session until it finishes or `engine.test_break()`; always ends the result.
 
     Returns the final `session.progress()`; raises RuntimeError if the native render failed (after the partial
-    image was handed to Blender).
+    image was handed to Blender), naming objects by `names` (export_scene's) where the message names a mesh.
     """
     width, height = session.width, session.height
     result = engine.begin_result(0, 0, width, height, layer=layer)
@@ -141,7 +142,7 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
                              stop_reason=progress.get("stop_reason"), relative_error=progress.get("relative_error"),
                              warnings=list(_warnings))
     if session.error:
-        raise RuntimeError(session.error)
+        raise RuntimeError(name_objects(session.error, names))
     engine.update_progress(1.0)
     engine.update_stats("", status_line(integrator, progress))
     out(summary_line(session, progress, width, height))
@@ -169,8 +170,9 @@ def render_frame(engine, depsgraph, background=False):
     camera = render_camera(scene, engine.camera_override)
     width, height = result_size(scene.render)
     warnings = Warnings()
+    names = {}
     arrays = export_scene(depsgraph, camera, test_break=engine.test_break,
-                          status=lambda text: engine.update_stats("", text), warnings=warnings)
+                          status=lambda text: engine.update_stats("", text), warnings=warnings, names=names)
     _warnings.clear()
     for message in warnings.messages:
         _warn(engine, message)
@@ -181,8 +183,13 @@ def render_frame(engine, depsgraph, background=False):
     camera_eval = camera.original.evaluated_get(depsgraph)
     params = to_native_params(scene, camera_eval.data, camera_object=camera_eval, view_layer=depsgraph.view_layer)
     engine.update_stats("", "Building scene")
-    session = nat.Session(arrays, params)
+    try:
+        # Validates everything and refuses a scene or film that cannot fit in memory, before building anything.
+        session = nat.Session(arrays, params)
+    except ValueError as e:
+        raise ExportError(name_objects(str(e), names)) from None
+    del arrays   # the session holds its own copy: do not keep two while the BVH is built
     if (session.width, session.height) != (width, height):
         raise RuntimeError(f"native film is {session.width}x{session.height}, Blender expects {width}x{height}")
     session.start()
-    return drive(engine, session, layer=layer, integrator=params["integrator"], background=background)
+    return drive(engine, session, layer=layer, integrator=params["integrator"], background=background, names=names)

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "scene/ray_query.h"
 #include "scene/scene_arrays.h"
 
 namespace candela {
@@ -24,8 +23,25 @@ struct Scene::Placement {
     uint32_t mesh = 0;
     uint32_t pass_index = 0;  // Blender's object pass index (the IndexOB pass)
     bool instanced = false;
+    // A mirroring transform (det < 0) reverses the winding: the winding normal then points into the object,
+    // so it is flipped back (as Cycles does for negative scale) and glass keeps its inside.
+    bool mirrored = false;
+    float magnitude = 0.f;   // largest |coordinate| of its vertices in camera-world space (rounding scale)
     Affine normal_to_world;  // cofactor matrix (instances only)
     int32_t light_base = -1; // light index of the mesh's first emissive triangle in this placement
+};
+
+/// Embree's per-query context plus what filter_hits needs. The context filter runs for every candidate hit.
+struct Scene::QueryContext {
+    RTCIntersectContext context;
+    PrimitiveRef skip[2];
+    const Scene* scene = nullptr;  // set for closest-hit queries: coplanar ties are broken
+    uint8_t ray_type = 0;                   // RayType bits checked against object_flags; 0 = no visibility check
+    const uint8_t* object_flags = nullptr;  // per top-level geometry id (ObjectFlag bits)
+    float origin_magnitude = 0.f, dir_length = 1.f;
+    bool have_best = false;
+    float best_t = 0.f, best_tolerance = 0.f;
+    PrimitiveRef best;
 };
 
 namespace {
@@ -42,6 +58,18 @@ Affine camera_matrix(const SceneArrays& arrays) {
     return m;
 }
 
+uint32_t top_level_id(const PrimitiveRef& h) { return h.inst != PrimitiveRef::k_none ? h.inst : h.geom; }
+
+/// Tie tolerance of coplanar hits, as a distance between planes: Embree's hit distance comes from
+/// dot(v0 − o, Ng)/dot(d, Ng) in float, whose rounding is a few ulps of the largest coordinate involved (the
+/// ray origin, the hit point, the triangle's vertices); two triangles lying in one plane (or in planes rotated
+/// and rounded to float from one plane) therefore differ by ~ε·M in plane distance, M the largest magnitude.
+/// 32ε·M (2e-6 M) leaves a wide margin over that and is still 50× below a gap of 1e-4 of the scene's size seen
+/// from inside the scene (M ≈ 3 sizes there).
+constexpr float k_coplanar_ulps = 32.f * 0x1p-24f;
+/// Area lights count up to this relative distance behind a surface: the shadow rays' margin (1 − 1e-4).
+constexpr float k_light_margin = 1e-4f;
+
 bool progress_monitor(void* ptr, double) {
     const auto* cancel = static_cast<const CancelToken*>(ptr);
     return !(cancel && cancel->cancelled());
@@ -52,6 +80,59 @@ struct MeshRange {
 };
 
 }  // namespace
+
+void Scene::filter_hits(const RTCFilterFunctionNArguments* args) {
+    auto* ctx = reinterpret_cast<QueryContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const PrimitiveRef hit{RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i),
+                               RTCHitN_instID(args->hit, args->N, i, 0)};
+        if (hit == ctx->skip[0] || hit == ctx->skip[1]) {
+            args->valid[i] = 0;
+            continue;
+        }
+        // Objects hidden from this ray type (Object > Visibility > Ray Visibility).
+        if (ctx->ray_type != 0 && (ctx->object_flags[top_level_id(hit)] & ctx->ray_type) == 0) {
+            args->valid[i] = 0;
+            continue;
+        }
+        if (!ctx->scene) continue;  // occlusion: any hit will do
+        // Closest hit: Embree has set tfar to this candidate's distance and restores it if we reject.
+        float& tfar = RTCRayN_tfar(args->ray, args->N, i);
+        const float t = tfar;
+        // In an instance the ray and Ng are in object space; t is the same parameter in both spaces.
+        const Vec3 d(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                     RTCRayN_dir_z(args->ray, args->N, i));
+        const Vec3 ng(RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
+                      RTCHitN_Ng_z(args->hit, args->N, i));
+        const float dn = length(d) * length(ng);
+        const float cos_theta = dn > 0.f ? std::fabs(dot(d, ng)) / dn : 1.f;
+        const Placement& pl = ctx->scene->m_placements[top_level_id(hit)];
+        const float plane_tolerance =
+            k_coplanar_ulps * (ctx->origin_magnitude + t * ctx->dir_length + pl.magnitude);
+        const float tolerance = plane_tolerance / (ctx->dir_length * std::max(cos_theta, 1e-3f));
+        if (ctx->have_best && t > ctx->best_t - std::max(tolerance, ctx->best_tolerance) &&
+            !ctx->scene->outranks(hit, ctx->best)) {
+            args->valid[i] = 0;  // coplanar with the current hit, which has the priority
+            continue;
+        }
+        ctx->have_best = true;
+        ctx->best_t = t;
+        ctx->best_tolerance = tolerance;
+        ctx->best = hit;
+        // Keep reporting hits up to the tolerance behind this one, so a coplanar rival is always compared.
+        if (std::isfinite(tolerance)) tfar = t + tolerance;
+    }
+}
+
+bool Scene::outranks(const PrimitiveRef& a, const PrimitiveRef& b) const {
+    auto key = [&](const PrimitiveRef& h) {
+        const uint32_t top = top_level_id(h);
+        const bool emissive = m_shading[m_placements[top].mesh].emissive_rank[h.prim] >= 0;
+        return (uint64_t(emissive) << 63) | (uint64_t(top) << 32) | h.prim;
+    };
+    return key(a) > key(b);
+}
 
 Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel)
     : m_device(params.get<int>("threads", 0)), m_camera(params, camera_matrix(arrays)) {
@@ -127,8 +208,9 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         return s;
     };
 
-    // Fills an Embree triangle geometry with the mesh's vertices mapped through `to_space`.
-    auto make_geometry = [&](uint32_t m, const Affine& to_space) {
+    // Fills an Embree triangle geometry with the mesh's vertices mapped through `to_space`; *magnitude gets the
+    // largest |coordinate| of the mapped vertices.
+    auto make_geometry = [&](uint32_t m, const Affine& to_space, float* magnitude) {
         const MeshRange& r = ranges[m];
         RTCGeometry g = rtcNewGeometry(m_device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
         const size_t nv = r.vert_end - r.vert_begin, nt = r.tri_end - r.tri_begin;
@@ -143,6 +225,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             vb[3 * v] = q.x;
             vb[3 * v + 1] = q.y;
             vb[3 * v + 2] = q.z;
+            *magnitude = std::max({*magnitude, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
         }
         for (size_t t = 0; t < 3 * nt; ++t) ib[t] = triangles[3 * size_t(r.tri_begin) + t] - r.vert_begin;
         rtcCommitGeometry(g);
@@ -150,7 +233,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     };
 
     // Emissive triangles of one placement become lights (world space).
-    auto add_triangle_lights = [&](uint32_t m, const Affine& to_world, const MeshShading& s) -> int32_t {
+    auto add_triangle_lights = [&](uint32_t m, const Affine& to_world, const MeshShading& s, bool mirrored) -> int32_t {
         const MeshRange& r = ranges[m];
         int32_t base = -1;
         for (uint32_t t = r.tri_begin; t < r.tri_end; ++t) {
@@ -170,7 +253,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             if (!is_finite(v[0]) || !is_finite(v[1]) || !is_finite(v[2]) || !std::isfinite(tl.area))
                 throw InvalidScene("an emissive triangle of mesh " + std::to_string(m) +
                                    " is not finite after its object's transform (is the scale too large?)");
-            tl.normal = tl.area > 0.f ? normalize(c) : Vec3(0.f, 0.f, 1.f);
+            tl.normal = tl.area > 0.f ? normalize(mirrored ? -c : c) : Vec3(0.f, 0.f, 1.f);
             tl.radiance = m_materials[s.material[t - r.tri_begin]].emission;
             // Degenerate triangles keep their light slot (ranks stay dense) but have zero power, so they
             // are never selected, and a zero area never divides.
@@ -212,19 +295,20 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         const uint8_t flags = flags_arr ? flags_arr->data<uint8_t>()[i] : uint8_t(k_object_default);
         m_has_holdouts |= (flags & k_object_holdout) != 0;
         m_hidden_from |= ~flags & k_ray_all;
+        pl.mirrored = xf.determinant3() < 0.f;
         const size_t n = ranges[m].tri_end - ranges[m].tri_begin;
         m_stats.instanced_triangles += n;
         if (uses[m] == 1) {
             // Single use: flatten into world space, no instancing indirection at render time.
             const Affine nxf = xf.normal_matrix();
             m_shading[m] = make_shading(m, &nxf);
-            RTCGeometry g = make_geometry(m, xf);
+            RTCGeometry g = make_geometry(m, xf, &pl.magnitude);
             const unsigned id = rtcAttachGeometry(m_top.get(), g);
             rtcReleaseGeometry(g);
             m_stats.unique_triangles += n;
             ++m_stats.meshes;
             if (m_placements.size() <= id) m_placements.resize(id + 1);
-            pl.light_base = add_triangle_lights(m, xf, m_shading[m]);
+            pl.light_base = add_triangle_lights(m, xf, m_shading[m], pl.mirrored);
             m_placements[id] = pl;
             set_object_flags(id, flags);
         } else {
@@ -234,7 +318,8 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
                 rtcSetSceneBuildQuality(s.get(), RTC_BUILD_QUALITY_HIGH);
                 rtcSetSceneFlags(s.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
                 rtcSetSceneProgressMonitorFunction(s.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
-                RTCGeometry g = make_geometry(m, Affine());
+                float unused = 0.f;
+                RTCGeometry g = make_geometry(m, Affine(), &unused);
                 rtcAttachGeometry(s.get(), g);
                 rtcReleaseGeometry(g);
                 rtcCommitScene(s.get());
@@ -253,7 +338,15 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             rtcReleaseGeometry(inst);
             pl.instanced = true;
             pl.normal_to_world = xf.normal_matrix();
-            pl.light_base = add_triangle_lights(m, xf, m_shading[m]);
+            pl.light_base = add_triangle_lights(m, xf, m_shading[m], pl.mirrored);
+            // Camera-world magnitude of the instance: its object-space bounds' corners, transformed.
+            RTCBounds ob;
+            rtcGetSceneBounds(m_mesh_scenes[mesh_scene[m]].get(), &ob);
+            for (int corner = 0; corner < 8; ++corner) {
+                const Vec3 q = xf.point(Vec3(corner & 1 ? ob.upper_x : ob.lower_x, corner & 2 ? ob.upper_y : ob.lower_y,
+                                             corner & 4 ? ob.upper_z : ob.lower_z));
+                pl.magnitude = std::max({pl.magnitude, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+            }
             if (m_placements.size() <= id) m_placements.resize(id + 1);
             m_placements[id] = pl;
             set_object_flags(id, flags);
@@ -287,8 +380,17 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
 uint32_t Scene::pass_index(const SurfaceHit& hit) const { return m_placements[hit.object].pass_index; }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip) const {
-    RayQueryContext context;
-    init_ray_query(&context, skip, {}, ray.type, m_object_flags.data(), (m_hidden_from & ray.type) != 0);
+    QueryContext context;
+    rtcInitIntersectContext(&context.context);
+    context.context.filter = &Scene::filter_hits;
+    context.skip[0] = skip;
+    context.scene = this;
+    context.origin_magnitude = std::max({std::fabs(ray.o.x), std::fabs(ray.o.y), std::fabs(ray.o.z)});
+    context.dir_length = length(ray.d);
+    if (m_hidden_from & ray.type) {
+        context.ray_type = ray.type;
+        context.object_flags = m_object_flags.data();
+    }
     RTCRayHit rh;
     rh.ray.org_x = ray.o.x;
     rh.ray.org_y = ray.o.y;
@@ -313,10 +415,12 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     const MeshShading& s = m_shading[pl.mesh];
     const uint32_t prim = rh.hit.primID;
 
-    hit->t = rh.ray.tfar;
-    hit->p = ray.o + ray.d * rh.ray.tfar;
+    // The filter widened tfar past the hit (to compare coplanar rivals): the hit's own distance is best_t.
+    hit->t = context.best_t;
+    hit->p = ray.o + ray.d * hit->t;
     Vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     if (pl.instanced) ng = pl.normal_to_world.vector(ng);
+    if (pl.mirrored) ng = -ng;
     const float len = length(ng);
     hit->ng = len > 0.f ? ng / len : Vec3(0.f, 0.f, 1.f);
     hit->ns = hit->ng;
@@ -340,9 +444,15 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
 
 bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from,
                      const PrimitiveRef& skip_to) const {
-    RayQueryContext context;
-    init_ray_query(&context, skip_from, skip_to, k_ray_shadow, m_object_flags.data(),
-                   (m_hidden_from & k_ray_shadow) != 0);
+    QueryContext context;
+    rtcInitIntersectContext(&context.context);
+    context.skip[0] = skip_from;
+    context.skip[1] = skip_to;
+    if (m_hidden_from & k_ray_shadow) {
+        context.ray_type = k_ray_shadow;
+        context.object_flags = m_object_flags.data();
+    }
+    if (skip_from.valid() || skip_to.valid() || context.ray_type != 0) context.context.filter = &Scene::filter_hits;
     RTCRay r;
     r.org_x = o.x;
     r.org_y = o.y;
@@ -362,6 +472,7 @@ bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRe
 
 bool Scene::intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t) const {
     bool found = false;
+    tmax *= 1.f + k_light_margin;
     for (uint32_t i : m_lights.area_lights()) {
         float th;
         if (std::get<AreaLight>(m_lights[i]).intersect(o, d, tmin, tmax, &th)) {

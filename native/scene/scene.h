@@ -39,14 +39,18 @@ public:
     Scene& operator=(const Scene&) = delete;
 
     /// Closest surface hit along the ray within (ray.tmin, ray.tmax), ignoring the triangle `skip` (the one
-    /// the ray leaves from: with the scale-relative origin offset this removes self-intersection) and the objects
-    /// invisible to the ray's type (ray.type).
+    /// the ray leaves from: with the scale-relative origin offset this removes self-intersection). Surfaces
+    /// whose planes coincide within float rounding at the hit (coplanar overlapping faces) are not told apart by
+    /// distance: an emitting one wins, then the later object, so the choice is the same for every ray. Objects
+    /// invisible to the ray's type (ray.type) are not hit.
     bool intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip = {}) const;
     /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the triangles at both ends and the
     /// objects invisible to shadow rays.
     bool occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from = {},
                   const PrimitiveRef& skip_to = {}) const;
-    /// Closest emitting side of an area light along the ray before tmax: its index and distance.
+    /// Closest emitting side of an area light along the ray before tmax·(1 + 1e-4): its index and distance. The
+    /// margin mirrors the shadow rays' (they stop at 1 − 1e-4 of the light's distance), so a light lying in a
+    /// surface's plane is seen by camera and BSDF rays exactly when light sampling sees it.
     bool intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t) const;
 
     const Camera& camera() const { return m_camera; }
@@ -70,7 +74,13 @@ public:
 private:
     struct MeshShading;
     struct Placement;
+    struct QueryContext;
     void build(const SceneArrays& arrays, const CancelToken* cancel);
+    /// Embree filter for every query: drops the skipped triangles and, for closest-hit queries, breaks ties
+    /// between coplanar surfaces by a fixed priority instead of float rounding (no z-fighting speckle).
+    static void filter_hits(const RTCFilterFunctionNArguments* args);
+    /// Priority among coplanar hits: emitters first, then the later geometry, then the higher triangle index.
+    bool outranks(const PrimitiveRef& a, const PrimitiveRef& b) const;
 
     EmbreeDevice m_device;
     EmbreeScene m_top;

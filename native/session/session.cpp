@@ -19,22 +19,45 @@ const char* phase_name(SessionPhase p) {
     }
 }
 
+namespace {
+
+struct FilmWindow {
+    int x0, y0, x1, y1;
+    double pixels() const { return double(x1 - x0) * double(y1 - y0); }
+};
+
+/// The border window from the params (the full frame without one); throws if it is empty or outside the frame.
+FilmWindow film_window(const Params& params) {
+    const int width = params.require<int>("width"), height = params.require<int>("height");
+    const FilmWindow w{params.get<int>("crop_x0", 0), params.get<int>("crop_y0", 0), params.get<int>("crop_x1", width),
+                       params.get<int>("crop_y1", height)};
+    if (w.x0 < 0 || w.y0 < 0 || w.x1 > width || w.y1 > height || w.x0 >= w.x1 || w.y0 >= w.y1)
+        throw InvalidParameter("the border window [" + std::to_string(w.x0) + ", " + std::to_string(w.x1) + ") x [" +
+                               std::to_string(w.y0) + ", " + std::to_string(w.y1) + ") is empty or outside the frame");
+    return w;
+}
+
+}  // namespace
+
+MemoryEstimate Session::estimate_memory(const SceneArrays& arrays, const Params& params) {
+    return candela::estimate_memory(arrays, params, film_window(params).pixels());
+}
+
 Session::Session(SceneArrays arrays, Params params)
     : m_arrays(std::make_unique<SceneArrays>(std::move(arrays))), m_params(std::move(params)) {
     m_arrays->validate();
     // Everything that can be checked without building the BVH is checked here, on the caller's thread.
-    const int width = m_params.require<int>("width"), height = m_params.require<int>("height");
     Camera probe(m_params, Affine());  // validates the camera params
-    const int x0 = m_params.get<int>("crop_x0", 0), y0 = m_params.get<int>("crop_y0", 0);
-    const int x1 = m_params.get<int>("crop_x1", width), y1 = m_params.get<int>("crop_y1", height);
-    if (x0 < 0 || y0 < 0 || x1 > width || y1 > height || x0 >= x1 || y0 >= y1)
-        throw InvalidParameter("the border window [" + std::to_string(x0) + ", " + std::to_string(x1) + ") x [" +
-                               std::to_string(y0) + ", " + std::to_string(y1) + ") is empty or outside the frame");
-    // Refuse resolutions whose buffers cannot be allocated before allocating them.
-    const double bytes = double(x1 - x0) * double(y1 - y0) * (sizeof(PixelAccum) + sizeof(Color) + 8 * sizeof(float));
-    if (bytes > 16e9)
-        throw InvalidParameter("a " + std::to_string(x1 - x0) + "x" + std::to_string(y1 - y0) +
-                               " render needs about " + std::to_string(int(bytes / 1e9)) + " GB of film memory");
+    const FilmWindow w = film_window(m_params);
+    const int x0 = w.x0, y0 = w.y0, x1 = w.x1, y1 = w.y1;
+    // Refuse renders that cannot fit in memory before allocating anything (the film here, the BVH on start()).
+    const MemoryEstimate memory = estimate_memory(*m_arrays, m_params);
+    if (!memory.fits()) {
+        if (memory.film_bytes > memory.geometry_bytes)
+            throw InvalidParameter("a " + std::to_string(x1 - x0) + "x" + std::to_string(y1 - y0) + " render: " +
+                                   memory.refusal());
+        throw InvalidScene(memory.refusal());
+    }
     m_threads = resolve_thread_count(m_params.get<int>("threads", 0));
     m_film = std::make_unique<Film>(x1 - x0, y1 - y0, x0, y0, m_params.get<int>("tile_size", 32));
     m_aovs = std::make_unique<AovFilm>(*m_film, split_pass_list(m_params.get<std::string>("passes", "")));

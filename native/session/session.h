@@ -18,6 +18,7 @@
 #include "film/film.h"
 #include "integrators/integrator.h"
 #include "scene/scene_arrays.h"
+#include "session/memory_estimate.h"
 
 namespace candela {
 
@@ -46,6 +47,10 @@ public:
     ~Session();
     Session(const Session&) = delete;
     Session& operator=(const Session&) = delete;
+
+    /// The memory a session with these arrays and params would allocate, and what is available (the
+    /// constructor refuses a render that does not fit). `arrays` must be valid.
+    static MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params);
 
     void start();
     /// Waits up to timeout_s; true once the worker finished (done, cancelled or failed).

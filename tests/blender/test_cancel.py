@@ -6,72 +6,10 @@ import bpy
 import numpy as np
 
 import scenes
+from fake_engine import FakeEngine
 from candela import native, render_loop
 from candela.export import export_scene, render_camera
 from candela.params import to_native_params
-
-
-class FakeRect:
-    def __init__(self):
-        self.data = None
-
-    def foreach_set(self, buf):
-        assert buf.ndim == 2 and buf.shape[1] == 4   # Blender 3.4 crashes on flat arrays
-        self.data = np.array(buf, copy=True)
-
-
-class FakePass:
-    def __init__(self, name, channels=4):
-        self.name, self.channels, self.rect = name, channels, FakeRect()
-
-
-class FakeLayer:
-    def __init__(self):
-        self.passes = [FakePass("Combined")]
-
-
-class FakeResult:
-    def __init__(self):
-        self.layers = [FakeLayer()]
-
-
-class FakeEngine:
-    """The RenderEngine methods render_loop.drive() uses; test_break() turns True `break_after` s after start."""
-
-    def __init__(self, break_after):
-        self.start = time.monotonic()
-        self.break_after = break_after
-        self.break_time = None
-        self.result = None
-        self.ended = False
-        self.reports = []
-        self.stats = []
-
-    def test_break(self):
-        if time.monotonic() - self.start >= self.break_after:
-            if self.break_time is None:
-                self.break_time = time.monotonic()
-            return True
-        return False
-
-    def begin_result(self, x, y, w, h, layer=""):
-        self.result = FakeResult()
-        return self.result
-
-    def update_result(self, result):
-        pass
-
-    def end_result(self, result, cancel=False):
-        self.ended = True
-
-    def update_progress(self, fraction):
-        pass
-
-    def update_stats(self, stats, info):
-        self.stats.append(info)
-
-    def report(self, kind, message):
-        self.reports.append((kind, message))
 
 
 def test_cancel_stops_quickly_and_keeps_partial_image():
@@ -93,7 +31,7 @@ def test_cancel_stops_quickly_and_keeps_partial_image():
     assert latency + render_loop.POLL_S < 0.1, f"{latency * 1000:.0f} ms after the break was seen"
     assert engine.ended
     assert session.progress()["phase"] == "cancelled"
-    partial = engine.result.layers[0].passes[0].rect.data
+    partial = engine.image()
     assert partial is not None and partial.shape == (64 * 48, 4)
     assert np.all(np.isfinite(partial)) and partial[:, :3].max() > 0.0
     assert lines and lines[0].startswith("Candela: rendered 64x48")

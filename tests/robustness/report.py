@@ -31,11 +31,53 @@ CASES = [
     ("BadInput.SceneWithoutLightsWarnsAndIsBlack", "no lights, black world", "renders black with a warning"),
     ("BadInput.CancelDuringTheBvhBuildReturnsQuickly", "cancel while a 1M-triangle BVH builds",
      "returns within 2 s, no error"),
+    ("Coplanar.AreaLightInTheCeilingPlaneMatchesTheLightJustBelowIt", "a Blender area light lying exactly in the "
+     "ceiling's plane, at scales 1e-3, 1 and 1e3 and 3e4 units from the origin",
+     "same image as with the light 1e-4 below the ceiling: no pixel apart by more than 6σ, the light's mean within "
+     "4σ (no speckle)"),
+    ("Coplanar.EmissiveQuadOnTheCeilingShowsNoSpeckle", "an emissive quad coplanar with a ceiling quad (same scales)",
+     "every pixel inside the emitter sees only the emitter (an exact colour test), no local-median outliers, same "
+     "image as the quad 1e-4 below"),
+    ("Coplanar.OverlappingQuadsOfTwoColoursShowOneOfThemEverywhere", "two overlapping coplanar quads, pure red and "
+     "pure green: face-on, at 18° grazing, rotated off the axes, at 4 scales and offsets",
+     "every overlap pixel shows one colour, the same one everywhere (no z-fighting)"),
+    ("Coplanar.SpeckleMeasureFindsAnInjectedOutlier", "the speckle measure (local median, 6σ plus local structure)",
+     "finds a single injected outlier, and nothing in a clean render"),
+    ("ShadingNormals.LowPolySmoothObjectsShadeSmoothlyOutsideTheTerminatorBand", "low-poly smooth-shaded spheres "
+     "(12×6, 8×4) and a 10-sided cylinder under a sun from the side",
+     "smooth-shading radiance wherever facet and shading normals agree, exactly black where the light is behind, "
+     "dark only in the terminator band, whose smooth shading is ≤ sin δ of full brightness (no faceting)"),
+    ("ShadingNormals.WhiteFurnaceWithSmoothShadingCreatesNoEnergy", "white furnace: albedo-1 low-poly smooth objects "
+     "(diffuse and GGX) and a ground with shading normals tilted ±35°, seen at grazing angles",
+     "every pixel ≤ 1 within 6σ, the mean ≤ 1 within 4σ, no NaN"),
+    ("ShadingNormals.NoLightLeaksIntoAClosedSmoothShadedEnclosure", "the camera inside a closed low-poly smooth box "
+     "or sphere; point, soft point, sun and area lights and a white world outside",
+     "exactly black inside (and bright without the walls)"),
+    ("LightsInsideClosedObjects.StayInvisibleFromOutside", "point (soft, on the floor), spot, area and emissive-mesh "
+     "lights inside a closed box (flat and smooth-shaded)", "exactly black outside, no NaN"),
+    ("PointLightOnASurface.StaysFiniteAndLightsTheRestAsJustAboveIt", "a point light on a face and on a vertex of a "
+     "floor, radius 0 and 0.1", "finite, no NaN; the rest lit as by the light 1e-4 above it (6σ per pixel)"),
+    ("NegativeScale.MirroredObjectsRenderLikeTheOriginals", "glass and diffuse low-poly smooth spheres mirrored along "
+     "one and three axes, flattened and instanced",
+     "same image as unmirrored (6σ per pixel, 4σ in the mean); normals point out"),
+    ("Memory.SceneTooLargeForTheLimitIsRefusedNamingTheBiggestMesh", "a scene over the memory limit",
+     "refused before anything is built, naming the biggest mesh, its triangles and the memory it needs"),
+    ("Memory.ResolutionTooLargeForTheLimitIsRefusedBeforeAllocation", "a 20,000² film over the memory limit",
+     "refused before allocation, with the memory it needs"),
+    ("Memory.TheDefaultLimitIsTheAvailableMemory", "no memory limit set",
+     "the machine's MemAvailable is the limit; a normal scene fits"),
+    ("Memory.EstimateBoundsThePeakOfARealBuild", "the memory estimate against the measured peak of building a "
+     "261k-triangle sphere and a 250k-triangle soup", "measured ≤ estimate ≤ 3 × measured"),
     ("robustness_sessions", "start → cancel and start → finish, 50 times each after warm-up",
      "always finite images; resident memory grows < 5 %"),
-    ("robustness_blender_bad_input", "through Blender: empty scene, NaN vertex, infinite scale, mesh without faces, "
-     "n-gons and non-manifold meshes, no lights, unsupported node, zero resolution, cancel during export, "
-     "20 renders in a row", "an error naming the object and the problem, or a render with a warning"),
+    ("robustness_blender_bad_input", "through Blender: empty scene, NaN vertex, infinite scale, zero scale, mesh "
+     "without faces, n-gons and non-manifold meshes, no lights, unsupported node, zero resolution, a scene too large "
+     "for a lowered memory limit, cancel during export, 20 renders in a row",
+     "an error naming the object and the problem, or a render with a warning"),
+    ("robustness_blender_cancel", "through the add-on's render loop: Esc during export, during a 1.3M-triangle BVH "
+     "build, during rendering; then 60 cancel/render cycles",
+     "a result always handed back (the partial image when rendering), no crash or hang, back within 0.1 s while "
+     "rendering and 1 s while building; resident memory grows < 5 %"),
     ("python_native", "bad arrays and params through the Python module; cancel latency",
      "ValueError naming the array / index / key; cancel within 100 ms"),
 ]
@@ -48,7 +90,8 @@ def main():
     a = ap.parse_args()
     build = Path(a.build).resolve()
     junit = build / "robustness-junit.xml"
-    subprocess.run(["ctest", "-R", "Fuzz|SelfIntersection|FarFromOrigin|Energy|BadInput|robustness_|python_native",
+    subprocess.run(["ctest", "-R", "Fuzz|SelfIntersection|FarFromOrigin|Energy|BadInput|Coplanar|ShadingNormals|"
+                    "LightsInsideClosedObjects|PointLightOnASurface|NegativeScale|Memory|robustness_|python_native",
                     "--output-junit", str(junit)], cwd=build, check=False)
     results = {}
     for case in ET.parse(junit).getroot().iter("testcase"):

@@ -111,3 +111,27 @@ def test_render_then_render_again_many_times():
     for _ in range(20):
         assert render_error(scene) is None
         assert last_stats()["phase"] == "done"
+
+
+def test_scene_too_large_for_memory_names_the_biggest_object():
+    scene = scenes.tiny_scene(16, 12, samples=1)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=256, ring_count=128)   # 65,024 triangles: ~12 MB to build
+    bpy.context.active_object.name = "BigSphere"
+    argv = list(sys.argv)
+    # The predicted need is compared with MemAvailable; a lowered limit (the farm option) triggers the refusal
+    # without exhausting the machine.
+    sys.argv[:] = argv + ["--candela-memory-limit-mb", "4"]
+    try:
+        error = render_error(scene)
+    finally:
+        sys.argv[:] = argv
+    assert error and "'BigSphere'" in error and "65,024 triangles" in error, error
+    assert "memory_limit_mb" in error and "4 MB are available" in error, error
+    assert render_error(scene) is None   # without the limit it fits
+
+
+def test_zero_scale_names_the_object():
+    scene = scenes.tiny_scene(16, 12, samples=1)
+    scene.objects["Cube"].scale = (0.0, 1.0, 1.0)
+    error = render_error(scene)
+    assert error and "'Cube'" in error and "zero-scale" in error, error

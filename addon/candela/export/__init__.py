@@ -2,8 +2,11 @@
 
     arrays = export_scene(depsgraph, camera, test_break=engine.test_break, status=print, warnings=Warnings())
 
-Returns None when `test_break()` turned True; raises ExportError for scenes that cannot be rendered.
+Returns None when `test_break()` turned True; raises ExportError for scenes that cannot be rendered. Pass a dict
+as `names` to receive how each exported mesh and instance is named in messages (name_objects uses it).
 """
+
+import re
 
 import numpy as np
 
@@ -15,7 +18,7 @@ from .lights import LightTable
 from .materials import MaterialTable
 from .world import world_color
 
-__all__ = ["export_scene", "render_camera", "ExportError", "Warnings"]
+__all__ = ["export_scene", "render_camera", "name_objects", "ExportError", "Warnings"]
 
 GEOMETRY_TYPES = {'MESH', 'CURVE', 'SURFACE', 'FONT', 'META'}
 BREAK_EVERY = 1000   # instances between test_break()/status calls: cheap enough, and < 0.1 s apart in practice
@@ -66,7 +69,23 @@ def _original_view_layer(depsgraph):
     return depsgraph.scene.original.view_layers.get(layer.name)
 
 
-def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None):
+def name_objects(message, names):
+    """A native message names meshes and instances by index ("mesh 3", "instance 7"); name the Blender objects."""
+    if not names:
+        return message
+
+    def replace(kind):
+        def label(match):
+            index = int(match.group(1))
+            table = names.get(kind, [])
+            return table[index] if index < len(table) else match.group(0)
+        return label
+
+    message = re.sub(r"\bmesh (\d+)\b", replace("mesh"), message)
+    return re.sub(r"\binstance (\d+)\b", replace("instance"), message)
+
+
+def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None, names=None):
     """Export the evaluated scene seen through `camera` (an original camera object, see render_camera)."""
     warnings = warnings if warnings is not None else Warnings()
     scene = depsgraph.scene
@@ -97,6 +116,8 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None)
     if geometry.triangle_count == 0:
         raise ExportError(f"scene '{scene.name}' has nothing to render: no visible mesh triangles")
 
+    if names is not None:
+        names.update(geometry.names())
     arrays = geometry.arrays()
     arrays.update(materials.arrays())
     arrays.update(lights.arrays())

@@ -20,6 +20,8 @@ class GeometryTable:
         self.transforms = []
         self.flags = []             # per instance: `instance_flags` bits (ray visibility, holdout)
         self.pass_indices = []      # per instance: the object's pass index (IndexOB)
+        self.mesh_objects = []      # per mesh: names of the objects drawing it (for messages)
+        self.instance_objects = []  # per instance: its object's name
 
     def _key(self, ob, slots):
         # Modified objects get their own evaluated mesh, so their pointer is distinct; linked duplicates share one.
@@ -44,6 +46,9 @@ class GeometryTable:
             self.transforms.append(matrix)
             self.flags.append(flags)
             self.pass_indices.append(pass_index)
+            self.instance_objects.append(ob.name)
+            if len(self.mesh_objects[index]) < 4:
+                self.mesh_objects[index].append(ob.name)
 
     def _add_mesh(self, ob, slots):
         data = read_mesh(ob)
@@ -53,7 +58,17 @@ class GeometryTable:
         # Out-of-range indices (slots removed after assignment) clamp to the last slot, as Blender draws them.
         tri_material = rows[np.clip(data.material_index, 0, len(rows) - 1)]
         self.meshes.append((data, tri_material))
+        self.mesh_objects.append([])
         return len(self.meshes) - 1
+
+    def names(self):
+        """How messages name mesh i and instance i: {"mesh": [...], "instance": [...]} (see name_objects)."""
+        def mesh_label(objects):
+            if len(objects) == 1:
+                return f"object '{objects[0]}'"
+            return f"the mesh of objects {', '.join(repr(o) for o in objects[:3])}{' …' if len(objects) > 3 else ''}"
+        return {"mesh": [mesh_label(o) for o in self.mesh_objects],
+                "instance": [f"object '{o}'" for o in self.instance_objects]}
 
     @property
     def triangle_count(self):
