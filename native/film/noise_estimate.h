@@ -5,9 +5,9 @@
 // Why replicates. The running moments of a pixel's samples (Σ L, Σ L²) give s²/n, the variance of the mean
 // of n *independent* samples. Stratified and quasi-Monte Carlo samples are not independent: they are spread
 // on purpose, and the error of their mean is smaller than s²/n says (s²/n over-states the RMSE by 10–20 % on
-// the room test scene, by 55–75 % on a soft shadow). So each pixel's samples are split into k_noise_replicates interleaved replicates (sample s belongs to
-// replicate s mod B), each an independently randomised point set of the chosen sampler (its own scramble /
-// permutation seed). Replicate means m_r (n_r samples each) are then independent estimates of the pixel,
+// the room test scene, by 55–75 % on a soft shadow). So each pixel's samples are split into
+// k_noise_replicates interleaved replicates (sample s belongs to replicate s mod B), each an independently
+// randomised point set of the chosen sampler (its own scramble / permutation seed). Replicate means m_r (n_r samples each) are then independent estimates of the pixel,
 // whatever the sampler does inside a replicate, and the pixel's mean is m = Σ n_r m_r / n. The one-way
 // analysis of variance
 //     v = Σ_r n_r (m_r − m)² / ((B − 1) · n)
