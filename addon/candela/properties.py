@@ -113,7 +113,7 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
         min=0.0, soft_max=3600.0, subtype='TIME_ABSOLUTE', unit='TIME_ABSOLUTE')
     noise_threshold: FloatProperty(
         name="Noise Threshold", description="Stop once the estimated relative error (RMSE / mean) of the whole "
-        "image falls below this; 0 = off. Checked from 16 samples per pixel on", default=0.0, min=0.0, max=0.5,
+        "image is below this with a confidence margin; 0 = off. Checked from 16 samples per pixel on", default=0.0, min=0.0, max=0.5,
         soft_max=0.1, precision=3, step=0.1)
     # integrator: added in register(), its items come from the native module loaded by then
 

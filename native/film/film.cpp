@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "core/error.h"
 
@@ -73,48 +72,38 @@ std::vector<float> Film::combined() const {
     return out;
 }
 
-namespace {
-
-/// Sample variance of a pixel's luminance divided by its sample count: the variance of its mean.
-double variance_of_mean(const PixelAccum& p) {
-    if (p.n < 2) return 0.0;
-    const double mean = luminance(Color(float(p.r / p.n), float(p.g / p.n), float(p.b / p.n)));
-    const double s2 = std::max(0.0, (p.lum_sq - p.n * mean * mean) / (p.n - 1));
-    return s2 / p.n;
-}
-
-}  // namespace
-
 std::vector<float> Film::noise() const {
+    const double scale = std::sqrt(noise_estimate().calibration);
     std::vector<float> out(size_t(m_width) * m_height, 0.f);
     for_each_tile_locked([&](const Tile& t) {
         for (int y = t.y0; y < t.y1; ++y)
             for (int x = t.x0; x < t.x1; ++x) {
                 const size_t i = size_t(y) * m_width + x;
-                out[i] = float(std::sqrt(variance_of_mean(m_pixels[i])));
+                out[i] = float(scale * std::sqrt(moment_variance_of_mean(m_pixels[i])));
             }
     });
     return out;
 }
 
 Film::NoiseEstimate Film::noise_estimate() const {
-    double var_sum = 0.0, lum_sum = 0.0;
-    bool complete = true;
+    NoiseTally tally;
     for_each_tile_locked([&](const Tile& t) {
         for (int y = t.y0; y < t.y1; ++y)
-            for (int x = t.x0; x < t.x1; ++x) {
-                const PixelAccum& p = m_pixels[size_t(y) * m_width + x];
-                complete &= p.n >= 2;
-                var_sum += variance_of_mean(p);
-                if (p.n) lum_sum += luminance(Color(float(p.r / p.n), float(p.g / p.n), float(p.b / p.n)));
-            }
+            for (int x = t.x0; x < t.x1; ++x) tally.add(m_pixels[size_t(y) * m_width + x]);
     });
-    const double pixels = double(m_width) * m_height;
-    NoiseEstimate e;
-    e.mean_luminance = lum_sum / pixels;
-    e.relative_rmse = (complete && e.mean_luminance > 0.0) ? std::sqrt(var_sum / pixels) / e.mean_luminance
-                                                            : std::numeric_limits<double>::infinity();
-    return e;
+    return tally.result();
+}
+
+PixelAccum Film::pixel(int x, int y) const {
+    if (x < 0 || y < 0 || x >= m_width || y >= m_height) throw InvalidParameter("pixel outside the film");
+    for (size_t i = 0; i < m_tiles.size(); ++i) {
+        const Tile& t = m_tiles[i];
+        if (x >= t.x0 && x < t.x1 && y >= t.y0 && y < t.y1) {
+            std::lock_guard<std::mutex> lock(m_tile_locks[i]);
+            return m_pixels[size_t(y) * m_width + x];
+        }
+    }
+    throw InternalError("pixel not covered by a tile");
 }
 
 uint32_t Film::min_samples() const {

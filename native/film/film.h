@@ -13,26 +13,38 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "film/noise_estimate.h"
 
 namespace candela {
 
 struct PixelAccum {
     double r = 0, g = 0, b = 0, a = 0;
-    double lum_sq = 0;  // Σ luminance² (per-pixel variance for noise estimates)
+    double lum_sq = 0;  // Σ luminance² (running moments: the shape of the per-pixel noise)
+    double rep_lum[k_noise_replicates] = {};  // Σ luminance per replicate (noise_estimate.h)
+    uint32_t rep_n[k_noise_replicates] = {};
     uint32_t n = 0;
 
-    void add(const Color& c, float alpha) {
+    /// `replicate` is noise_replicate_of(sample index): which independent randomisation drew the sample.
+    void add(const Color& c, float alpha, uint32_t replicate) {
         r += c.x;
         g += c.y;
         b += c.z;
         a += alpha;
         const double l = luminance(c);
         lum_sq += l * l;
+        rep_lum[replicate] += l;
+        ++rep_n[replicate];
         ++n;
     }
     void add(const PixelAccum& o) {
         r += o.r; g += o.g; b += o.b; a += o.a; lum_sq += o.lum_sq; n += o.n;
+        for (uint32_t k = 0; k < k_noise_replicates; ++k) {
+            rep_lum[k] += o.rep_lum[k];
+            rep_n[k] += o.rep_n[k];
+        }
     }
+    /// Σ luminance of the samples (luminance is linear in RGB).
+    double lum_sum() const { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
 };
 
 struct Tile {
@@ -69,17 +81,17 @@ public:
 
     /// "Combined" as RGBA float32, rows bottom to top (Blender's order); (W·H·4) floats.
     std::vector<float> combined() const;
-    /// "Noise": per pixel, the estimated standard error of the pixel's mean luminance, √(s²/n), from the
-    /// running moments of its samples (0 until a pixel has two samples).
+    /// "Noise": per pixel, the estimated standard error of the pixel's mean luminance: the running-moment
+    /// figure √(s²/n) scaled by the image's replicate calibration √κ (noise_estimate.h), so that its mean
+    /// square is the replicate estimate (0 until a pixel has two samples).
     std::vector<float> noise() const;
 
-    /// Whole-image error estimate from the same moments: relative RMSE = √(mean over pixels of s²/n) divided
-    /// by the mean pixel luminance, the quantity the accuracy report measures against a converged reference.
-    struct NoiseEstimate {
-        double relative_rmse = 0.0;  // infinity until every pixel has two samples
-        double mean_luminance = 0.0;
-    };
+    /// Whole-image error estimate (noise_estimate.h): relative RMSE from independent replicates, its upper
+    /// confidence bound and the independent-sample (moment) figure.
+    using NoiseEstimate = candela::NoiseEstimate;
     NoiseEstimate noise_estimate() const;
+    /// A copy of one pixel's accumulated samples (film coordinates, y from the bottom), for diagnostics and tests.
+    PixelAccum pixel(int x, int y) const;
     /// Samples taken per pixel (minimum over the film).
     uint32_t min_samples() const;
 

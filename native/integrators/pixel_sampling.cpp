@@ -1,7 +1,10 @@
 #include "integrators/pixel_sampling.h"
 
+#include <algorithm>
+
 #include "core/error.h"
-#include "sampling/sampler.h"
+#include "core/rng.h"
+#include "film/noise_estimate.h"
 
 namespace candela {
 
@@ -20,6 +23,12 @@ PixelSampling PixelSampling::from_params(const Params& params) {
     if (s.noise_threshold < 0.0 || s.noise_threshold >= 1.0)
         throw InvalidParameter("noise_threshold must be in [0, 1) (a relative error; 0 = off)");
     return s;
+}
+
+Sampler PixelSampling::replicate_sampler(uint32_t replicate) const {
+    // Sample indices s < samples with s mod B = replicate.
+    const int share = (samples - int(replicate) + int(k_noise_replicates) - 1) / int(k_noise_replicates);
+    return make_sampler(sampler, hash_values(seed, replicate, 0x7265706c6963ULL /* "replic" */), std::max(share, 1));
 }
 
 }  // namespace candela

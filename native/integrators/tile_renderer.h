@@ -2,13 +2,16 @@
 // growing sample counts (1, 1, 2, 4, …, 16 samples per pixel), each pass running over all tiles in
 // parallel, so the user sees the whole frame early. A cancel is seen between pixel rows: the tile being
 // rendered is abandoned (its pixels keep the passes already added), so workers stop within one row.
-// Sample k of pixel (x, y) always uses sampler state (seed, x, y, k): results are the same for any
-// thread count and tile order.
+// Sample k of pixel (x, y) always uses sampler state (seed, x, y, k) — precisely sample k / B of the
+// sampler of noise replicate k mod B (film/noise_estimate.h) — so results are the same for any thread count
+// and tile order.
 //
 // Stopping: after `samples` passes' worth, or earlier by `time_limit` (the next pass is shrunk to what the
 // measured time per sample says still fits, and none is started if not even one sample per pixel fits)
-// or by `noise_threshold` (the film's estimated relative RMSE, checked after every pass once each pixel
-// has k_min_noise_samples samples, since a variance from fewer samples is too unreliable to stop on).
+// or by `noise_threshold` (checked after every pass once each pixel has k_min_noise_samples samples: the
+// render stops when the upper confidence bound of the film's replicate estimate of the relative RMSE is
+// under the threshold, so the reported estimate is then under it too, and a low estimate that is low by
+// chance — a small border, heavy-tailed samples — does not end the render early).
 #pragma once
 
 #include <algorithm>
@@ -61,7 +64,8 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                 const Tile& tile = film.tiles()[tile_index];
                 std::vector<PixelAccum> accum(size_t(tile.width()) * tile.height());
                 std::vector<AovAccum> aov_accum(aovs ? accum.size() : 0);
-                Sampler sampler = make_sampler(ps.sampler, ps.seed, ps.samples);
+                std::vector<Sampler> replicates;
+                for (uint32_t r = 0; r < k_noise_replicates; ++r) replicates.push_back(ps.replicate_sampler(r));
                 PathStats stats;
                 for (int y = tile.y0; y < tile.y1; ++y) {
                     if (ctx.cancel.cancelled()) return;  // abandon this tile's pass: nothing half-added
@@ -69,7 +73,9 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                         const int fx = film.origin_x() + x, fy = film.origin_y() + y;  // full-frame pixel
                         PixelAccum& acc = accum[size_t(y - tile.y0) * tile.width() + (x - tile.x0)];
                         for (int s = begin; s < end; ++s) {
-                            start_pixel_sample(sampler, uint32_t(fx), uint32_t(fy), uint32_t(s));
+                            const uint32_t replicate = noise_replicate_of(uint32_t(s));
+                            Sampler& sampler = replicates[replicate];
+                            start_pixel_sample(sampler, uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
                             const Vec2 offset = ps.filter.sample(get_pixel_2d(sampler));
                             const Vec2 u_lens = camera.has_aperture() ? get_2d(sampler, Dim::Lens) : Vec2{0.5f, 0.5f};
                             const Ray ray = camera.generate_ray({fx + 0.5f + offset.x, fy + 0.5f + offset.y}, u_lens);
@@ -87,7 +93,7 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                                 ++stats.nan_samples;
                                 L = Color(0.f);
                             }
-                            acc.add(L, alpha);
+                            acc.add(L, alpha, replicate);
                             if (aovs) aov_accum[size_t(y - tile.y0) * tile.width() + (x - tile.x0)].add(aov, s == 0);
                         }
                     }
@@ -101,9 +107,11 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
         seconds_per_sample = seconds_since(pass_start) / (end - begin);
         done = end;
         ctx.counters.samples_done = done;
-        const double error = film.noise_estimate().relative_rmse;
+        const NoiseEstimate estimate = film.noise_estimate();
+        const double error = estimate.relative_rmse;
         ctx.counters.relative_error = std::isfinite(error) ? error : -1.0;
-        if (ps.noise_threshold > 0.0 && done >= k_min_noise_samples && error <= ps.noise_threshold) {
+        if (ps.noise_threshold > 0.0 && done >= k_min_noise_samples &&
+            estimate.relative_rmse_bound <= ps.noise_threshold) {
             stop = StopReason::NoiseThreshold;
             break;
         }

@@ -67,9 +67,9 @@ TEST(Film, TilesCoverEveryPixelOnce) {
 TEST(Film, CombinedAveragesSamplesAndAddsScaledSplats) {
     Film film(2, 2, 0, 0, 32);
     std::vector<PixelAccum> px(4);
-    px[0].add(Color(1.f, 2.f, 3.f), 1.f);
-    px[0].add(Color(3.f, 2.f, 1.f), 0.f);
-    px[3].add(Color(4.f), 1.f);
+    px[0].add(Color(1.f, 2.f, 3.f), 1.f, 0);
+    px[0].add(Color(3.f, 2.f, 1.f), 0.f, 1);
+    px[3].add(Color(4.f), 1.f, 0);
     film.add_tile(0, px);
     SplatBuffer s;
     s.entries.push_back({3, Color(2.f)});
@@ -81,6 +81,61 @@ TEST(Film, CombinedAveragesSamplesAndAddsScaledSplats) {
     EXPECT_FLOAT_EQ(c[3], 0.5f);  // alpha averages too
     EXPECT_FLOAT_EQ(c[12], 5.f);  // pixel 3: 4 + 0.5·2
     EXPECT_FLOAT_EQ(c[4], 0.f);   // no samples yet
+}
+
+// Noise estimates (film/noise_estimate.h) on hand-computed pixels. Grey samples: luminance = value.
+// Pixel A: replicate 0 holds 1 and 3, replicate 1 holds 5. n = 3, mean 3, replicate means 2 and 5:
+//   v = Σ n_r (m_r − m)² / ((B − 1) n) = (2·1 + 1·4) / 3 = 2;  s² = (4 + 0 + 4) / 2 = 4, s²/n = 4/3.
+// Pixel B: replicate 0 holds 2, replicate 1 holds 4: v = (1 + 1) / 2 = 1;  s² = 2, s²/n = 1.
+PixelAccum pixel_a() {
+    PixelAccum p;
+    p.add(Color(1.f), 1.f, 0);
+    p.add(Color(5.f), 1.f, 1);
+    p.add(Color(3.f), 1.f, 0);
+    return p;
+}
+PixelAccum pixel_b() {
+    PixelAccum p;
+    p.add(Color(2.f), 1.f, 0);
+    p.add(Color(4.f), 1.f, 1);
+    return p;
+}
+
+TEST(FilmNoise, ReplicateVarianceIsTheBetweenReplicateSpread) {
+    EXPECT_NEAR(replicate_variance_of_mean(pixel_a()), 2.0, 1e-5);
+    EXPECT_NEAR(moment_variance_of_mean(pixel_a()), 4.0 / 3.0, 1e-5);
+    EXPECT_NEAR(replicate_variance_of_mean(pixel_b()), 1.0, 1e-5);
+    EXPECT_NEAR(moment_variance_of_mean(pixel_b()), 1.0, 1e-5);
+}
+
+TEST(FilmNoise, UnknownUntilEveryReplicateHasASample) {
+    PixelAccum p;
+    p.add(Color(1.f), 1.f, 0);
+    p.add(Color(2.f), 1.f, 0);
+    EXPECT_LT(replicate_variance_of_mean(p), 0.0);
+    Film film(1, 1);
+    film.add_tile(0, {p});
+    const NoiseEstimate e = film.noise_estimate();
+    EXPECT_TRUE(std::isinf(e.relative_rmse));
+    EXPECT_TRUE(std::isinf(e.relative_rmse_bound));
+    EXPECT_NEAR(e.moment_relative_rmse, std::sqrt(0.25) / 1.5, 1e-6);  // s² = 0.5, s²/n = 0.25, mean 1.5
+    EXPECT_DOUBLE_EQ(e.calibration, 1.0);
+}
+
+TEST(FilmNoise, ImageFiguresAndTheCalibratedNoisePass) {
+    Film film(2, 1);
+    film.add_tile(0, {pixel_a(), pixel_b()});
+    const NoiseEstimate e = film.noise_estimate();
+    // Σ v = 3 over 2 pixels of mean luminance 3; Σ s²/n = 7/3; Σ v² = 5, so the bound adds 2·√(2·5/3).
+    EXPECT_NEAR(e.mean_luminance, 3.0, 1e-5);
+    EXPECT_NEAR(e.relative_rmse, std::sqrt(3.0 / 2.0) / 3.0, 1e-6);
+    EXPECT_NEAR(e.moment_relative_rmse, std::sqrt(7.0 / 6.0) / 3.0, 1e-6);
+    EXPECT_NEAR(e.relative_rmse_bound, std::sqrt((3.0 + 2.0 * std::sqrt(10.0 / 3.0)) / 2.0) / 3.0, 1e-6);
+    EXPECT_NEAR(e.calibration, 9.0 / 7.0, 1e-6);
+    // The pass: √(κ s²/n) per pixel, so its mean square is Σ v / pixels.
+    const std::vector<float> noise = film.noise();
+    EXPECT_NEAR(noise[0], std::sqrt(9.0 / 7.0 * 4.0 / 3.0), 1e-5);
+    EXPECT_NEAR(noise[1], std::sqrt(9.0 / 7.0), 1e-5);
 }
 
 TEST(Film, RejectsEmptyFilm) { EXPECT_THROW(Film(0, 3), InvalidParameter); }
