@@ -10,12 +10,14 @@
 #include <vector>
 
 #include "bsdf/material.h"
+#include "bsdf/material_inputs.h"
 #include "core/parallel.h"
 #include "core/params.h"
 #include "core/transform.h"
 #include "lights/light.h"
 #include "scene/camera.h"
 #include "scene/embree_device.h"
+#include "scene/shading_point.h"
 #include "scene/surface_hit.h"
 
 namespace candela {
@@ -46,6 +48,10 @@ public:
     /// Closest emitting side of an area light along the ray before tmax: its index and distance.
     bool intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t) const;
 
+    /// The material at a hit seen from direction wo (toward the viewer): its BSDF for that side, emission and
+    /// shading normal, with textures and normal maps evaluated there (scene/shading.cpp).
+    ShadingPoint shade(const SurfaceHit& hit, const Vec3& wo) const;
+
     const Camera& camera() const { return m_camera; }
     const std::vector<Material>& materials() const { return m_materials; }
     const LightSet& lights() const { return m_lights; }
@@ -58,6 +64,7 @@ private:
     struct MeshShading;
     struct Placement;
     void build(const SceneArrays& arrays, const CancelToken* cancel);
+    void add_environment();
 
     EmbreeDevice m_device;
     EmbreeScene m_top;
@@ -66,6 +73,10 @@ private:
     std::vector<Placement> m_placements;     // per top-level geometry id
     Camera m_camera;
     std::vector<Material> m_materials;
+    std::shared_ptr<const ShaderLibrary> m_shaders;
+    std::vector<MaterialInputs> m_material_inputs;  // textured materials (Material::inputs)
+    int32_t m_world_program = -1, m_world_reg = -1;  // the world shader, if it varies with direction
+    int m_threads = 0;
     LightSet m_lights;
     Vec3 m_offset;  // added to world positions: −camera position
     float m_radius = 1.f;

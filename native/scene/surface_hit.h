@@ -24,6 +24,7 @@ struct SurfaceHit {
     uint32_t material = 0;
     int32_t light = -1;  // index in the LightSet if the triangle emits, else −1
     PrimitiveRef primitive;  // the triangle hit
+    float b1 = 0.f, b2 = 0.f;  // barycentric weights of the triangle's second and third corners
 };
 
 }  // namespace candela
