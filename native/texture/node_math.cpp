@@ -130,7 +130,7 @@ Color mix_blend(MixBlend blend, float t, const Color& a, const Color& b) {
         case MixBlend::Divide: return per_channel(divide, t, a, b);
         case MixBlend::Difference: return lerp(a, vabs(a - b), t);
         case MixBlend::Darken: return lerp(a, vmin(a, b), t);
-        case MixBlend::Lighten: return vmax(a, b * t);
+        case MixBlend::Lighten: return lerp(a, vmax(a, b), t);
         case MixBlend::Overlay: return per_channel(overlay, t, a, b);
         case MixBlend::Dodge: return per_channel(dodge, t, a, b);
         case MixBlend::Burn: return per_channel(burn, t, a, b);

@@ -130,3 +130,109 @@ def render(scene, engine, samples, path, max_bounces=4):
         c.samples, c.pixel_filter, c.filter_width, c.max_bounces = samples, 'BOX', 1.0, max_bounces
     bpy.ops.render.render(write_still=True)
     return scenes.read_image_pixels(path)
+
+
+# ---- node semantics: an emission plane whose colour is a node chain over its UVs -------------------------------
+
+MATH_OPS = ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER", "LOGARITHM", "SQRT", "INVERSE_SQRT",
+            "ABSOLUTE", "EXPONENT", "MINIMUM", "MAXIMUM", "LESS_THAN", "GREATER_THAN", "SIGN", "COMPARE",
+            "SMOOTH_MIN", "SMOOTH_MAX", "ROUND", "FLOOR", "CEIL", "TRUNC", "FRACT", "MODULO", "WRAP", "SNAP",
+            "PINGPONG", "SINE", "COSINE", "TANGENT", "ARCSINE", "ARCCOSINE", "ARCTANGENT", "ARCTAN2", "SINH", "COSH",
+            "TANH", "RADIANS", "DEGREES")
+MIX_BLENDS = ("MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
+              "LINEAR_LIGHT", "DIFFERENCE", "SUBTRACT", "DIVIDE", "HUE", "SATURATION", "VALUE", "COLOR")
+
+
+def node_scene(kind, size=32):
+    """An orthographic view of a plane filling the frame whose Emission colour is `kind` applied to its UVs:
+    "math_OP" (Math node on 4u − 2 and v, then Absolute), "mix_BLEND" (colour Mix of (u, v, 0.4) and a constant
+    by factor v), "ramp" (an eased ColorRamp of u), "hsv" (Combine HSV → Separate HSL → Combine RGB), "misc"
+    (Mapping → Gamma → Bright/Contrast → Invert)."""
+    scene = scenes.empty_scene(size, size)
+    scenes.add_camera(scene, location=(0.0, 0.0, 4.0), rotation=(0.0, 0.0, 0.0))
+    scene.camera.data.type, scene.camera.data.ortho_scale = 'ORTHO', 4.0
+    plane = scenes.link(scene, bpy.data.objects.new("Plane", scenes.grid_mesh("Plane", 2.0)))
+    layer = plane.data.uv_layers.new(name="UVMap")
+    layer.data.foreach_set("uv", np.array([(0, 0), (1, 0), (1, 1), (0, 1)], np.float32).ravel())
+    mat = bpy.data.materials.new("Nodes")
+    mat.use_nodes = True
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    nodes.remove(nodes["Principled BSDF"])
+    emission = nodes.new("ShaderNodeEmission")
+    links.new(emission.outputs[0], nodes["Material Output"].inputs["Surface"])
+    separate = nodes.new("ShaderNodeSeparateXYZ")
+    links.new(nodes.new("ShaderNodeTexCoord").outputs["UV"], separate.inputs[0])
+    u, v = separate.outputs[0], separate.outputs[1]
+
+    def uv_color(z):
+        combine = nodes.new("ShaderNodeCombineXYZ")
+        links.new(u, combine.inputs[0])
+        links.new(v, combine.inputs[1])
+        combine.inputs[2].default_value = z
+        return combine.outputs[0]
+
+    if kind.startswith("math_"):
+        scale = nodes.new("ShaderNodeMath")
+        scale.operation = 'MULTIPLY_ADD'
+        links.new(u, scale.inputs[0])
+        scale.inputs[1].default_value, scale.inputs[2].default_value = 4.0, -2.0
+        node = nodes.new("ShaderNodeMath")
+        node.operation = kind[5:]
+        links.new(scale.outputs[0], node.inputs[0])
+        links.new(v, node.inputs[1])
+        node.inputs[2].default_value = 0.3
+        absolute = nodes.new("ShaderNodeMath")
+        absolute.operation = 'ABSOLUTE'
+        links.new(node.outputs[0], absolute.inputs[0])
+        out = absolute.outputs[0]
+    elif kind.startswith("mix_"):
+        node = nodes.new("ShaderNodeMix")
+        node.data_type, node.blend_type = 'RGBA', kind[4:]
+        sockets = {s.identifier: s for s in node.inputs}
+        links.new(uv_color(0.4), sockets["A_Color"])
+        sockets["B_Color"].default_value = (0.8, 0.3, 0.6, 1.0)
+        links.new(v, sockets["Factor_Float"])
+        out = {s.identifier: s for s in node.outputs}["Result_Color"]
+    elif kind == "ramp":
+        node = nodes.new("ShaderNodeValToRGB")
+        links.new(u, node.inputs[0])
+        node.color_ramp.elements[0].color = (0.1, 0.8, 0.2, 1.0)
+        node.color_ramp.elements.new(0.4).color = (0.9, 0.1, 0.3, 1.0)
+        node.color_ramp.interpolation = 'EASE'
+        out = node.outputs[0]
+    elif kind == "hsv":
+        hsv = nodes.new("ShaderNodeCombineColor")
+        hsv.mode = 'HSV'
+        links.new(u, hsv.inputs[0])
+        links.new(v, hsv.inputs[1])
+        hsv.inputs[2].default_value = 0.8
+        hsl = nodes.new("ShaderNodeSeparateColor")
+        hsl.mode = 'HSL'
+        links.new(hsv.outputs[0], hsl.inputs[0])
+        rgb = nodes.new("ShaderNodeCombineColor")
+        links.new(hsl.outputs[0], rgb.inputs[1])
+        links.new(hsl.outputs[2], rgb.inputs[0])
+        links.new(hsv.outputs[0], rgb.inputs[2])
+        out = rgb.outputs[0]
+    elif kind == "misc":
+        mapping = nodes.new("ShaderNodeMapping")
+        mapping.inputs["Rotation"].default_value = (0.0, 0.0, 0.5)
+        mapping.inputs["Scale"].default_value = (2.0, 1.0, 1.0)
+        mapping.inputs["Location"].default_value = (0.1, 0.2, 0.0)
+        links.new(uv_color(0.5), mapping.inputs[0])
+        gamma = nodes.new("ShaderNodeGamma")
+        gamma.inputs[1].default_value = 2.2
+        links.new(mapping.outputs[0], gamma.inputs[0])
+        bc = nodes.new("ShaderNodeBrightContrast")
+        bc.inputs[1].default_value, bc.inputs[2].default_value = 0.1, 0.3
+        links.new(gamma.outputs[0], bc.inputs[0])
+        invert = nodes.new("ShaderNodeInvert")
+        invert.inputs[0].default_value = 0.3
+        links.new(bc.outputs[0], invert.inputs[1])
+        out = invert.outputs[0]
+    else:
+        raise ValueError(kind)
+    links.new(out, emission.inputs["Color"])
+    plane.data.materials.append(mat)
+    scene.world = None
+    return scene

@@ -179,6 +179,8 @@ TEST(ShaderProgram, MixBlends) {
     expect_vec(mix_blend(MixBlend::Difference, 1.f, a, c), vabs(a - c), k_eps, "difference");
     expect_vec(mix_blend(MixBlend::Darken, 1.f, a, c), vmin(a, c), k_eps, "darken");
     expect_vec(mix_blend(MixBlend::Lighten, 1.f, a, c), vmax(a, c), k_eps, "lighten");
+    // Cycles blends toward the maximum (svm_mix_light), unlike Blender's compositor max(a, t·b).
+    expect_vec(mix_blend(MixBlend::Lighten, 0.5f, Color(0.2f), Color(0.8f)), Color(0.5f), k_eps, "lighten half");
     expect_vec(mix_blend(MixBlend::Divide, 1.f, a, c), a / c, k_eps, "divide");
     expect_vec(mix_blend(MixBlend::LinearLight, 1.f, a, c), a + c * 2.f - Color(1.f), k_eps, "linear light");
     // Value blend at t = 1 takes b's value with a's hue and saturation.
