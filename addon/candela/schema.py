@@ -38,6 +38,7 @@ SHADER_ENUMS = {
     "tex_interpolations": ("CLOSEST", "LINEAR", "CUBIC"),
     "tex_extensions": ("REPEAT", "EXTEND", "CLIP"),
     "tex_color_spaces": ("LINEAR", "SRGB"),
+    "tex_storages": ("FLOAT", "BYTE"),
     "input_targets": ("CLOSURE", "EMISSION", "NORMAL", "WORLD"),
 }
 RAMP_SIZE = 256   # entries per ColorRamp table

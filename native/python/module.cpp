@@ -123,6 +123,7 @@ py::dict capabilities() {
     d["tex_interpolations"] = enum_dict(tex_interpolation_names());
     d["tex_extensions"] = enum_dict(tex_extension_names());
     d["tex_color_spaces"] = enum_dict(tex_color_space_names());
+    d["tex_storages"] = enum_dict(tex_storage_names());
     d["input_targets"] = enum_dict(input_target_names());
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));

@@ -19,6 +19,10 @@ const std::vector<std::string>& tex_color_space_names() {
     static const std::vector<std::string> names = {"LINEAR", "SRGB"};
     return names;
 }
+const std::vector<std::string>& tex_storage_names() {
+    static const std::vector<std::string> names = {"FLOAT", "BYTE"};
+    return names;
+}
 
 namespace {
 

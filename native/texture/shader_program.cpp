@@ -60,26 +60,33 @@ int arity(ShaderOpCode code) {
 
 }  // namespace
 
-ShaderLibrary::ShaderLibrary(std::vector<float> texels, const std::vector<uint32_t>& texture_info,
-                             std::vector<float> ramps, std::vector<float> consts, std::vector<ShaderOp> ops,
-                             std::vector<uint32_t> program_start)
-    : m_texels(std::move(texels)), m_ramps(std::move(ramps)), m_consts(std::move(consts)), m_ops(std::move(ops)),
+ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, std::vector<float> consts,
+                             std::vector<ShaderOp> ops, std::vector<uint32_t> program_start)
+    : m_pools(std::move(textures)), m_ramps(std::move(ramps)), m_consts(std::move(consts)), m_ops(std::move(ops)),
       m_program_start(std::move(program_start)) {
-    const size_t texel_count = m_texels.size() / 4;
-    if (texture_info.size() % 4 != 0) throw InvalidScene("'texture_info' needs 4 columns");
-    for (size_t t = 0; t < texture_info.size() / 4; ++t) {
-        const uint32_t* r = &texture_info[4 * t];
+    const size_t counts[2] = {m_pools.floats.size() / 4, m_pools.bytes.size() / 4};
+    const char* pools[2] = {"textures", "textures_u8"};
+    if (m_pools.info.size() % 5 != 0) throw InvalidScene("'texture_info' needs 5 columns");
+    for (size_t t = 0; t < m_pools.info.size() / 5; ++t) {
+        const uint32_t* r = &m_pools.info[5 * t];
         const std::string where = "texture_info[" + std::to_string(t) + "]";
         if (r[1] == 0 || r[2] == 0) throw InvalidScene(where + ": an image needs a positive width and height");
-        if (uint64_t(r[0]) + uint64_t(r[1]) * r[2] > texel_count)
-            throw InvalidScene(where + ": texels [" + std::to_string(r[0]) + ", +" + std::to_string(uint64_t(r[1]) * r[2]) +
-                               ") run past the " + std::to_string(texel_count) + " texels of 'textures'");
         if (r[3] >= tex_color_space_names().size())
             throw InvalidScene(where + ": colour space " + std::to_string(r[3]) + " is unknown");
-        m_textures.push_back(ImageTexture{m_texels.data() + 4 * size_t(r[0]), r[1], r[2], TexColorSpace(r[3])});
+        if (r[4] >= tex_storage_names().size()) throw InvalidScene(where + ": storage " + std::to_string(r[4]) + " is unknown");
+        if (uint64_t(r[0]) + uint64_t(r[1]) * r[2] > counts[r[4]])
+            throw InvalidScene(where + ": texels [" + std::to_string(r[0]) + ", +" + std::to_string(uint64_t(r[1]) * r[2]) +
+                               ") run past the " + std::to_string(counts[r[4]]) + " texels of '" + pools[r[4]] + "'");
+        ImageTexture img;
+        if (TexStorage(r[4]) == TexStorage::Byte) img.bytes = m_pools.bytes.data() + 4 * size_t(r[0]);
+        else img.texels = m_pools.floats.data() + 4 * size_t(r[0]);
+        img.width = r[1];
+        img.height = r[2];
+        img.color_space = TexColorSpace(r[3]);
+        m_textures.push_back(img);
     }
-    for (size_t i = 0; i < m_texels.size(); ++i)
-        if (!std::isfinite(m_texels[i])) throw InvalidScene("textures[" + std::to_string(i / 4) + "] is not finite");
+    for (size_t i = 0; i < m_pools.floats.size(); ++i)
+        if (!std::isfinite(m_pools.floats[i])) throw InvalidScene("textures[" + std::to_string(i / 4) + "] is not finite");
     for (size_t i = 0; i < m_ramps.size(); ++i)
         if (!std::isfinite(m_ramps[i])) throw InvalidScene("ramps: entry " + std::to_string(i) + " is not finite");
     for (size_t i = 0; i < m_consts.size(); ++i)
@@ -161,10 +168,12 @@ std::shared_ptr<const ShaderLibrary> ShaderLibrary::load(const SceneArrays& arra
             ops[k] = ShaderOp{ShaderOpCode(r[0]), r[1], r[2], r[3], {r[4], r[5], r[6], r[7]}};
         }
     }
-    if (arrays.has("textures") != arrays.has("texture_info"))
-        throw InvalidScene("'textures' and 'texture_info' must be given together");
-    return std::make_shared<const ShaderLibrary>(floats("textures"), uints("texture_info"), floats("ramps"),
-                                                 floats("shader_consts"), std::move(ops), uints("shader_programs"));
+    TexturePools pools;
+    pools.floats = floats("textures");
+    pools.info = uints("texture_info");
+    if (const Array* a = arrays.find("textures_u8")) pools.bytes.assign(a->data<uint8_t>(), a->data<uint8_t>() + a->count());
+    return std::make_shared<const ShaderLibrary>(std::move(pools), floats("ramps"), floats("shader_consts"),
+                                                 std::move(ops), uints("shader_programs"));
 }
 
 }  // namespace candela

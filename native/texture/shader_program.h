@@ -84,6 +84,13 @@ struct ShaderOp {
     uint32_t i[4] = {0, 0, 0, 0};
 };
 
+/// The images of a scene: two texel pools and, per image, [first texel, width, height, colour space, storage].
+struct TexturePools {
+    std::vector<float> floats;     // RGBA float32 texels (`textures`)
+    std::vector<uint8_t> bytes;    // RGBA 8-bit texels (`textures_u8`)
+    std::vector<uint32_t> info;    // rows of 5 (`texture_info`)
+};
+
 /// Every shader program of a scene with the images, ramps and constants they use. Immutable after load.
 class ShaderLibrary {
 public:
@@ -91,8 +98,8 @@ public:
     static std::shared_ptr<const ShaderLibrary> load(const SceneArrays& arrays);
 
     /// Programs built directly (tests): the pools are taken as they are and validated.
-    ShaderLibrary(std::vector<float> texels, const std::vector<uint32_t>& texture_info, std::vector<float> ramps,
-                  std::vector<float> consts, std::vector<ShaderOp> ops, std::vector<uint32_t> program_start);
+    ShaderLibrary(TexturePools textures, std::vector<float> ramps, std::vector<float> consts, std::vector<ShaderOp> ops,
+                  std::vector<uint32_t> program_start);
     ShaderLibrary(const ShaderLibrary&) = delete;  // the texture views point into this object's texel pool
     ShaderLibrary& operator=(const ShaderLibrary&) = delete;
 
@@ -113,7 +120,7 @@ public:
 private:
     Vec3 ramp(uint32_t index, float fac, bool interpolate, bool alpha) const;
 
-    std::vector<float> m_texels;
+    TexturePools m_pools;
     std::vector<ImageTexture> m_textures;
     std::vector<float> m_ramps;
     std::vector<float> m_consts;

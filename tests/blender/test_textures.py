@@ -52,8 +52,10 @@ def test_textured_plane_exports_an_image_program(tmp_path):
     a, warnings = export(scene)
     assert warnings == []
     assert a["uvs"].shape == (2, 3, 2) and a["uvs"].min() == 0.0 and a["uvs"].max() == 1.0
-    assert a["texture_info"].tolist() == [[0, 8, 8, schema.shader_enum("tex_color_spaces")["SRGB"]]]
-    assert a["textures"].shape == (64, 4)
+    assert a["texture_info"].tolist() == [[0, 8, 8, schema.shader_enum("tex_color_spaces")["SRGB"],
+                                           schema.shader_enum("tex_storages")["BYTE"]]]
+    assert a["textures_u8"].shape == (64, 4) and "textures" not in a   # 8-bit texels stay 8-bit
+    assert np.array_equal(a["textures_u8"][:, :3].reshape(8, 8, 3), np.rint(ts.checker() * 255).astype(np.uint8))
     cols = schema.closure_columns()
     targets = schema.shader_enum("input_targets")
     binding = a["input_bindings"][0]
@@ -82,6 +84,22 @@ def test_non_color_images_are_not_decoded(tmp_path):
     pixels = ts.render(scene, 'CANDELA', 4, str(tmp_path / "plane.exr"), max_bounces=0)
     stored = np.round(ts.checker() * 255.0) / 255.0
     want, inside = expected_plane(scene, stored, decode=False)
+    assert np.allclose(pixels[..., :3][inside], want[inside], rtol=1e-4, atol=1e-6)
+
+
+def test_packed_images_need_no_file(tmp_path):
+    def packed():
+        image = ts.save_image(str(tmp_path / "packed.png"), ts.checker())
+        image.pack()
+        (tmp_path / "packed.png").unlink()
+        return image
+
+    scene = ts.textured_plane_scene(str(tmp_path), image=packed)
+    a, warnings = export(scene)
+    assert warnings == [] and a["textures_u8"].shape == (64, 4)
+    pixels = ts.render(scene, 'CANDELA', 4, str(tmp_path / "packed.exr"), max_bounces=0)
+    stored = np.round(ts.checker() * 255.0) / 255.0
+    want, inside = expected_plane(scene, stored, decode=True)
     assert np.allclose(pixels[..., :3][inside], want[inside], rtol=1e-4, atol=1e-6)
 
 
@@ -147,7 +165,8 @@ def test_environment_world_exports_a_program(tmp_path):
     targets = schema.shader_enum("input_targets")
     world = [b for b in a["input_bindings"] if b[0] == targets["WORLD"]]
     assert len(world) == 1
-    assert a["texture_info"][0, 1:].tolist() == [64, 32, schema.shader_enum("tex_color_spaces")["LINEAR"]]
+    assert a["texture_info"][0, 1:].tolist() == [64, 32, schema.shader_enum("tex_color_spaces")["LINEAR"],
+                                                 schema.shader_enum("tex_storages")["FLOAT"]]
 
 
 @pytest.mark.parametrize("name", ["textured_plane", "environment"])

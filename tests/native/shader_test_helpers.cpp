@@ -5,8 +5,16 @@ namespace candela::test {
 uint32_t ProgramBuilder::image(uint32_t w, uint32_t h, const std::vector<Color>& rgb, TexColorSpace cs) {
     const uint32_t first = uint32_t(texels.size() / 4);
     for (const Color& c : rgb) texels.insert(texels.end(), {c.x, c.y, c.z, 1.f});
-    texture_info.insert(texture_info.end(), {first, w, h, uint32_t(cs)});
-    return uint32_t(texture_info.size() / 4 - 1);
+    texture_info.insert(texture_info.end(), {first, w, h, uint32_t(cs), uint32_t(TexStorage::Float)});
+    return uint32_t(texture_info.size() / 5 - 1);
+}
+
+uint32_t ProgramBuilder::byte_image(uint32_t w, uint32_t h, const std::vector<std::array<uint8_t, 3>>& rgb,
+                                    TexColorSpace cs) {
+    const uint32_t first = uint32_t(bytes.size() / 4);
+    for (const auto& c : rgb) bytes.insert(bytes.end(), {c[0], c[1], c[2], 255});
+    texture_info.insert(texture_info.end(), {first, w, h, uint32_t(cs), uint32_t(TexStorage::Byte)});
+    return uint32_t(texture_info.size() / 5 - 1);
 }
 
 uint32_t ProgramBuilder::ramp(const std::vector<std::array<float, 4>>& table) {
@@ -36,13 +44,15 @@ void ProgramBuilder::bind(InputTarget target, uint32_t row, uint32_t column, uin
 }
 
 std::shared_ptr<const ShaderLibrary> ProgramBuilder::library() const {
-    return std::make_shared<const ShaderLibrary>(texels, texture_info, ramps, consts, ops, program_start);
+    return std::make_shared<const ShaderLibrary>(TexturePools{texels, bytes, texture_info}, ramps, consts, ops,
+                                                 program_start);
 }
 
 void ProgramBuilder::add_to(SceneArrays& a) const {
     if (!texture_info.empty()) {
-        a.set("textures", ElemType::F32, {texels.size() / 4, 4}, texels.data());
-        a.set("texture_info", ElemType::U32, {texture_info.size() / 4, 4}, texture_info.data());
+        if (!texels.empty()) a.set("textures", ElemType::F32, {texels.size() / 4, 4}, texels.data());
+        if (!bytes.empty()) a.set("textures_u8", ElemType::U8, {bytes.size() / 4, 4}, bytes.data());
+        a.set("texture_info", ElemType::U32, {texture_info.size() / 5, 5}, texture_info.data());
     }
     if (!ramps.empty()) a.set("ramps", ElemType::F32, {ramps.size() / (4 * k_ramp_size), k_ramp_size, 4}, ramps.data());
     if (!consts.empty()) a.set("shader_consts", ElemType::F32, {consts.size()}, consts.data());

@@ -13,7 +13,8 @@ namespace candela::test {
 
 struct ProgramBuilder {
     std::vector<float> texels;             // RGBA
-    std::vector<uint32_t> texture_info;    // rows of 4
+    std::vector<uint8_t> bytes;            // RGBA, 8-bit images
+    std::vector<uint32_t> texture_info;    // rows of 5
     std::vector<float> ramps;              // 256 × 4 per ramp
     std::vector<float> consts;
     std::vector<ShaderOp> ops;
@@ -22,6 +23,8 @@ struct ProgramBuilder {
 
     /// Adds a w×h image (rows bottom-up) from RGB values (alpha 1); returns its texture index.
     uint32_t image(uint32_t w, uint32_t h, const std::vector<Color>& rgb, TexColorSpace cs = TexColorSpace::Linear);
+    /// Adds an 8-bit image from RGB bytes (alpha 255).
+    uint32_t byte_image(uint32_t w, uint32_t h, const std::vector<std::array<uint8_t, 3>>& rgb, TexColorSpace cs);
     uint32_t ramp(const std::vector<std::array<float, 4>>& table);  // 256 entries
     /// Appends an operation to the current program; returns its register.
     uint32_t op(ShaderOpCode code, uint32_t a = 0, uint32_t b = 0, uint32_t c = 0, std::array<uint32_t, 4> i = {});

@@ -101,6 +101,20 @@ TEST(ImageTexture, SrgbImagesAreDecodedAfterInterpolation) {
                k_eps, "midpoint");
 }
 
+TEST(ImageTexture, ByteImagesReadValueOver255AndDecodeAfterFiltering) {
+    ProgramBuilder b;
+    b.byte_image(2, 1, {{{0, 128, 255}}, {{255, 64, 0}}}, TexColorSpace::Srgb);
+    b.byte_image(2, 1, {{{0, 128, 255}}, {{255, 64, 0}}}, TexColorSpace::Linear);
+    const auto lib = b.library();
+    const auto L = TexInterpolation::Linear;
+    const auto E = TexExtension::Extend;
+    expect_vec(lib->textures()[1].lookup(0.25f, 0.5f, L, E).rgb, Color(0.f, 128.f / 255.f, 1.f), k_eps, "raw texel");
+    EXPECT_NEAR(lib->textures()[1].lookup(0.25f, 0.5f, L, E).a, 1.f, k_eps);
+    // Halfway between the texels the encoded values average first: decode((0 + 255)/2/255) etc.
+    expect_vec(lib->textures()[0].lookup(0.5f, 0.5f, L, E).rgb,
+               srgb_to_linear(Color(0.5f, (128.f + 64.f) / 510.f, 0.5f)), 1e-6f, "decoded midpoint");
+}
+
 TEST(ImageTexture, CubicReproducesAConstantImage) {
     ProgramBuilder b;
     b.image(3, 3, std::vector<Color>(9, Color(0.3f, 0.6f, 0.9f)));

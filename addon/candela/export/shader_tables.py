@@ -3,8 +3,9 @@ constants, operations, program ranges and input bindings, shared by every materi
 
 A `Program` is one material's (or the world's) flat operation list. Operation k writes register k and reads only
 registers before it; values are either Python constants (3-tuples, folded here) or `Reg`s. Images are read once per
-export with `foreach_get` (no per-pixel Python) and kept as Blender stores them: 8-bit sRGB images keep their
-encoded texels and are decoded by the renderer after filtering, as Cycles does; float images are already linear.
+export with `foreach_get` (no per-pixel Python) and kept as Blender stores them: 8-bit images go to the byte pool
+(4 bytes a texel) with their encoded values, which the renderer decodes after filtering for sRGB images, as Cycles
+does; float images go to the float pool, already scene-linear.
 """
 
 import numpy as np
@@ -103,9 +104,9 @@ class ShaderTables:
     def __init__(self, warnings):
         self.warnings = warnings
         self._enums = {}
-        self.texel_chunks = []       # (N, 4) float32 arrays
-        self.texel_count = 0
-        self.texture_info = []       # [first texel, width, height, colour space]
+        self.texel_chunks = {"FLOAT": [], "BYTE": []}   # (N, 4) float32 / uint8 arrays per pool
+        self.texel_count = {"FLOAT": 0, "BYTE": 0}
+        self.texture_info = []       # [first texel, width, height, colour space, storage]
         self._images = {}            # image pointer → texture index, or None when it cannot be loaded
         self.ramps = []              # (256, 4) float32 arrays
         self.consts = []
@@ -155,6 +156,8 @@ class ShaderTables:
         width, height = (int(v) for v in image.size)   # reading the size loads the image if it can
         if width <= 0 or height <= 0 or not image.has_data:
             return None
+        if image.source == 'TILED':
+            self.warnings.add(f"Candela: image '{image.name}' is tiled (UDIM); only its first tile is used")
         channels = int(image.channels)
         buf = np.empty(width * height * channels, np.float32)
         image.pixels.foreach_get(buf)
@@ -169,11 +172,17 @@ class ShaderTables:
                 rgba[:, :3] = px[:, :1]
                 if channels == 2:
                     rgba[:, 3] = px[:, 1]
-        rgba = np.nan_to_num(rgba, nan=0.0, posinf=0.0, neginf=0.0)
-        self.texture_info.append([self.texel_count, width, height,
-                                  self.enum("tex_color_spaces")[self._color_space(image)]])
-        self.texel_chunks.append(np.ascontiguousarray(rgba, np.float32))
-        self.texel_count += width * height
+        if image.is_float:
+            storage = "FLOAT"
+            texels = np.ascontiguousarray(np.nan_to_num(rgba, nan=0.0, posinf=0.0, neginf=0.0), np.float32)
+        else:   # Blender hands 8-bit texels out as k/255: back to the bytes they are
+            storage = "BYTE"
+            texels = np.ascontiguousarray(np.clip(np.rint(rgba * 255.0), 0, 255).astype(np.uint8))
+        self.texture_info.append([self.texel_count[storage], width, height,
+                                  self.enum("tex_color_spaces")[self._color_space(image)],
+                                  self.enum("tex_storages")[storage]])
+        self.texel_chunks[storage].append(texels)
+        self.texel_count[storage] += width * height
         return len(self.texture_info) - 1
 
     def _color_space(self, image):
@@ -212,8 +221,11 @@ class ShaderTables:
             "shader_programs": np.array(self.program_start, np.uint32),
         }
         if self.texture_info:
-            out["textures"] = np.concatenate(self.texel_chunks).astype(np.float32, copy=False)
-            out["texture_info"] = np.array(self.texture_info, np.uint32).reshape(-1, 4)
+            if self.texel_chunks["FLOAT"]:
+                out["textures"] = np.concatenate(self.texel_chunks["FLOAT"])
+            if self.texel_chunks["BYTE"]:
+                out["textures_u8"] = np.concatenate(self.texel_chunks["BYTE"])
+            out["texture_info"] = np.array(self.texture_info, np.uint32).reshape(-1, 5)
         if self.ramps:
             out["ramps"] = np.stack(self.ramps).astype(np.float32)
         if self.bindings:
