@@ -87,6 +87,37 @@ def test_non_color_images_are_not_decoded(tmp_path):
     assert np.allclose(pixels[..., :3][inside], want[inside], rtol=1e-4, atol=1e-6)
 
 
+def test_node_groups_reroutes_and_muted_nodes_are_followed(tmp_path):
+    """The checker image inside a node group, through a reroute and a muted Invert node, renders as without."""
+    reference = ts.render(ts.textured_plane_scene(str(tmp_path)), 'CANDELA', 4, str(tmp_path / "ref.exr"), 0)
+    scene = ts.textured_plane_scene(str(tmp_path))
+    mat = bpy.data.materials["Checker"]
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    tex = nodes["Image Texture"]
+    group = bpy.data.node_groups.new("Wrap", 'ShaderNodeTree')
+    group.inputs.new('NodeSocketColor', "Tint")
+    group.outputs.new('NodeSocketColor', "Color")
+    g_in, g_out = group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput")
+    multiply = group.nodes.new("ShaderNodeMixRGB")
+    multiply.blend_type, multiply.inputs["Fac"].default_value = 'MULTIPLY', 1.0
+    group.links.new(g_in.outputs["Tint"], multiply.inputs["Color1"])
+    multiply.inputs["Color2"].default_value = (1.0, 1.0, 1.0, 1.0)
+    group.links.new(multiply.outputs["Color"], g_out.inputs["Color"])
+    wrapper = nodes.new("ShaderNodeGroup")
+    wrapper.node_tree = group
+    reroute = nodes.new("NodeReroute")
+    muted = nodes.new("ShaderNodeInvert")
+    muted.mute = True
+    links.new(tex.outputs["Color"], wrapper.inputs["Tint"])
+    links.new(wrapper.outputs["Color"], reroute.inputs[0])
+    links.new(reroute.outputs[0], muted.inputs["Color"])
+    links.new(muted.outputs["Color"], nodes["Diffuse BSDF"].inputs["Color"])
+    a, warnings = export(scene)
+    assert warnings == [] and len(a["input_bindings"]) == 1
+    pixels = ts.render(scene, 'CANDELA', 4, str(tmp_path / "group.exr"), 0)
+    assert np.allclose(pixels, reference, rtol=1e-5, atol=1e-7)
+
+
 def test_packed_images_need_no_file(tmp_path):
     def packed():
         image = ts.save_image(str(tmp_path / "packed.png"), ts.checker())
