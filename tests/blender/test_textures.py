@@ -200,17 +200,24 @@ def test_environment_world_exports_a_program(tmp_path):
                                                  schema.shader_enum("tex_storages")["FLOAT"]]
 
 
-@pytest.mark.parametrize("name", ["textured_plane", "environment"])
+@pytest.mark.parametrize("name", ["textured_plane", "environment", "environment_rotated"])
 def test_brightness_matches_cycles(tmp_path, name):
-    """Image mean within 2 % of Cycles 3.4 (the parity requirement). Both renders' relative noise of the image mean
-    is below 0.1 % at these sample counts (Candela's noise estimate: ≤ 3.5 % per pixel over ≥ 768 pixels), so
-    2 % is far outside noise: a failure is a real difference."""
+    """The parity requirement against Cycles 3.4: image mean within 2 %, 4 × 4 block means within 5 %. At these
+    sample counts both renders' per-pixel noise is ≤ 3.5 % (Candela's estimate), so the noise of the image mean is
+    < 0.15 % and of a block mean (≥ 48 pixels) < 0.5 %: 2 % and 5 % are far outside noise, a failure is a real
+    difference. The rotated environment checks Blender's direction → (u, v) mapping through a Mapping node."""
     if name == "textured_plane":
         build, samples, bounces = ts.textured_plane_scene, 32, 0
-    else:
+    elif name == "environment":
         build, samples, bounces = (lambda d: ts.environment_scene(d, 32, 24)), 128, 4
-    means = {}
+    else:
+        build, samples, bounces = (lambda d: ts.environment_scene(d, 32, 24, rotation=1.0)), 128, 4
+    images = {}
     for engine in ('CYCLES', 'CANDELA'):
-        pixels = ts.render(build(str(tmp_path)), engine, samples, str(tmp_path / f"{engine}.exr"), bounces)
-        means[engine] = float(pixels[..., :3].mean())
-    assert means['CANDELA'] == pytest.approx(means['CYCLES'], rel=0.02), means
+        images[engine] = ts.render(build(str(tmp_path)), engine, samples, str(tmp_path / f"{engine}.exr"), bounces)
+    a, b = images['CANDELA'][..., :3].mean(-1), images['CYCLES'][..., :3].mean(-1)
+    assert a.mean() == pytest.approx(b.mean(), rel=0.02), (a.mean(), b.mean())
+    h, w = a.shape
+    ba, bb = (x[: h // 4 * 4, : w // 4 * 4].reshape(4, h // 4, 4, w // 4).mean(axis=(1, 3)) for x in (a, b))
+    lit = bb > 0.05 * bb.max()
+    assert np.all(np.abs(ba - bb)[lit] <= 0.05 * bb[lit]), np.round(ba / bb, 3)

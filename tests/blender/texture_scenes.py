@@ -78,18 +78,22 @@ def textured_plane_scene(directory, width=48, height=48, image=None):
 
 
 def sky_image(w=64, h=32):
-    """A float environment: a bright warm sun patch, a blue gradient sky and a dark ground (row 0 = down)."""
+    """A float environment: a bright warm sun patch, a blue gradient sky whose red varies around the horizon (so
+    that a mirrored or shifted u shows), and a dark ground (row 0 = down)."""
     v = (np.arange(h) + 0.5) / h
+    u = (np.arange(w) + 0.5) / w
     sky = np.zeros((h, w, 3), np.float32)
     sky[...] = np.stack([0.2 + 0.5 * v, 0.3 + 0.6 * v, 0.6 + 0.8 * v], axis=-1)[:, None, :]
+    sky[..., 0] *= (0.3 + 1.4 * u)[None, :]
     sky[: h // 2] *= 0.1
     sky[h * 3 // 4: h * 3 // 4 + 2, w * 5 // 8: w * 5 // 8 + 2] = (40.0, 35.0, 25.0)
     return sky
 
 
-def environment_scene(directory, width=48, height=32, strength=1.5):
+def environment_scene(directory, width=48, height=32, strength=1.5, rotation=None):
     """A diffuse sphere (albedo 0.7) on no ground, lit by an equirectangular float EXR world of strength 1.5,
-    seen together with the background."""
+    seen together with the background. With `rotation` (radians about Z) the world's Generated coordinates go
+    through a Mapping node first, the usual way to turn an HDRI."""
     scene = scenes.empty_scene(width, height)
     scenes.add_camera(scene, location=(0.0, -5.0, 0.0), rotation=(np.pi / 2, 0.0, 0.0))
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=1.0)
@@ -108,6 +112,11 @@ def environment_scene(directory, width=48, height=32, strength=1.5):
     env.image = save_image(os.path.join(directory, "sky.exr"), sky_image(), float_buffer=True)
     links.new(env.outputs["Color"], nodes["Background"].inputs["Color"])
     nodes["Background"].inputs["Strength"].default_value = strength
+    if rotation is not None:
+        mapping = nodes.new("ShaderNodeMapping")
+        mapping.inputs["Rotation"].default_value = (0.0, 0.0, rotation)
+        links.new(nodes.new("ShaderNodeTexCoord").outputs["Generated"], mapping.inputs["Vector"])
+        links.new(mapping.outputs["Vector"], env.inputs["Vector"])
     return scene
 
 
