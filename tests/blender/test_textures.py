@@ -48,6 +48,14 @@ def expected_plane(scene, texels, decode):
     return (srgb_decode(albedo) if decode else albedo) * SUN / math.pi, inside
 
 
+def test_supported_node_lists_name_real_node_types():
+    from candela.export.materials import SUPPORTED_SHADER_NODES
+    from candela.export.shader_nodes import SUPPORTED_INPUT_NODES
+    assert "ShaderNodeTexImage" in SUPPORTED_INPUT_NODES and "ShaderNodeNormalMap" in SUPPORTED_INPUT_NODES
+    for name in SUPPORTED_SHADER_NODES + SUPPORTED_INPUT_NODES:
+        assert hasattr(bpy.types, name), name
+
+
 def test_textured_plane_exports_an_image_program(tmp_path):
     scene = ts.textured_plane_scene(str(tmp_path))
     a, warnings = export(scene)

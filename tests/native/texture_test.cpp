@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
+#include "core/rng.h"
 #include "shader_test_helpers.h"
 #include "texture/color_space.h"
 #include "texture/node_math.h"
@@ -278,6 +279,55 @@ TEST(ShaderProgram, InvalidProgramsAreRejectedWithTheOperation) {
     c.op(ShaderOpCode::Image, 0, 0, 0, {3, 0, 0, 0});
     c.end_program();
     EXPECT_THROW(c.library(), InvalidScene);  // no texture 3
+}
+
+ShadingInputs tilted_frame();  // a shading frame with a tangent (below)
+
+TEST(ShaderProgram, RandomProgramsStayFinite) {
+    // Programs of random operations on extreme constants (±1e30, 0, tiny) and random coordinates: every register
+    // must stay finite, so a texture network can never put NaN or Inf into a BSDF or the film.
+    Pcg32 rng(17, 3);
+    auto pick = [&](uint32_t n) { return std::min(uint32_t(rng.next_float() * float(n)), n - 1); };
+    for (int trial = 0; trial < 300; ++trial) {
+        ProgramBuilder b;
+        b.image(3, 2, {Color(0.f), Color(1e30f), Color(0.5f), Color(-2.f), Color(3.f), Color(1e-30f)});
+        std::vector<std::array<float, 4>> table(k_ramp_size, {1e30f, -1e30f, 0.f, 1.f});
+        b.ramp(table);
+        b.consts.insert(b.consts.end(), {1e30f, -1e30f, 0.f, 0.f, 1e-30f, 2.f, -1.f, 0.5f, 1e30f, 0.f, 0.f, 0.f});
+        const float extremes[] = {1e30f, -1e30f, 0.f, 1e-30f, -0.5f, 3.f};
+        for (int k = 0; k < 4; ++k)
+            b.constant(Vec3(extremes[pick(6)], extremes[pick(6)], extremes[pick(6)]));
+        for (int k = 0; k < 30; ++k) {
+            const uint32_t r = uint32_t(b.ops.size());
+            const auto code = ShaderOpCode(1 + pick(uint32_t(shader_op_names().size()) - 1));
+            std::array<uint32_t, 4> imm = {0, 0, 0, 0};
+            switch (code) {
+                case ShaderOpCode::Coord: imm[0] = pick(uint32_t(coord_kind_names().size())); break;
+                case ShaderOpCode::Image:
+                case ShaderOpCode::ImageAlpha: imm = {0, pick(3), pick(3), pick(3)}; break;
+                case ShaderOpCode::Mix: imm = {pick(uint32_t(mix_blend_names().size())), pick(2), pick(2), pick(2)}; break;
+                case ShaderOpCode::Math: imm = {pick(uint32_t(math_op_names().size())), pick(2), 0, 0}; break;
+                case ShaderOpCode::Ramp:
+                case ShaderOpCode::RampAlpha: imm = {0, pick(2), 0, 0}; break;
+                case ShaderOpCode::Combine: imm[0] = pick(3); break;
+                case ShaderOpCode::Separate: imm = {pick(3), pick(3), 0, 0}; break;
+                case ShaderOpCode::Mapping: imm = {0, pick(2), 0, 0}; break;
+                case ShaderOpCode::NormalMap: imm[0] = pick(uint32_t(normal_map_space_names().size())); break;
+                default: break;
+            }
+            b.op(code, pick(r), pick(r), pick(r), imm);
+        }
+        b.end_program();
+        const auto lib = b.library();
+        ShadingInputs in = tilted_frame();
+        in.uv = Vec3(extremes[pick(6)], extremes[pick(6)], 0.f);
+        in.generated = in.object = Vec3(extremes[pick(6)], -1.f, 2.f);
+        ShaderRegisters regs(lib->program_size(0));
+        lib->evaluate(0, in, regs.data());
+        for (uint32_t r = 0; r < lib->program_size(0); ++r)
+            ASSERT_TRUE(is_finite(regs[r])) << "trial " << trial << ", register " << r << " ("
+                                            << shader_op_names()[size_t(lib->op(0, r).code)] << ")";
+    }
 }
 
 // ---- normal map ---------------------------------------------------------------------------------------------

@@ -18,6 +18,11 @@ from .shader_nodes import NodeCompiler, resolve
 from .shader_tables import ShaderTables, const3, is_const
 
 DEFAULT_BASE = (0.8, 0.8, 0.8)   # no material at all: Blender's default grey
+# The shader nodes the closure walker understands (for Candela's Shift+A node categories and the docs).
+SUPPORTED_SHADER_NODES = ("ShaderNodeAddShader", "ShaderNodeBsdfAnisotropic", "ShaderNodeBsdfDiffuse",
+                          "ShaderNodeBsdfGlass", "ShaderNodeBsdfGlossy", "ShaderNodeBsdfPrincipled",
+                          "ShaderNodeBsdfRefraction", "ShaderNodeBsdfTranslucent", "ShaderNodeBsdfTransparent",
+                          "ShaderNodeEmission", "ShaderNodeMixShader")
 COLOR_GROUPS = ("weight", "color", "subsurface")   # closure values spread over the columns NAME_r, NAME_g, NAME_b
 PLACEHOLDER = {"ior": 1.45}   # row value under a bound (varying) column; must pass the native row checks
 

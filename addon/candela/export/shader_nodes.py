@@ -310,3 +310,7 @@ class NodeCompiler:
         if node.clamp_type == "RANGE":   # either order of the bounds
             lo, hi = self.program.math("MINIMUM", lo, hi), self.program.math("MAXIMUM", lo, hi)
         return self.program.math("MINIMUM", self.program.math("MAXIMUM", v, lo), hi)
+
+
+# The input nodes the compiler understands (for Candela's Shift+A node categories and the docs).
+SUPPORTED_INPUT_NODES = tuple(sorted(name[1:] for name in dir(NodeCompiler) if name.startswith("_ShaderNode")))
