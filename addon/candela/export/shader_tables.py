@@ -172,12 +172,16 @@ class ShaderTables:
                 rgba[:, :3] = px[:, :1]
                 if channels == 2:
                     rgba[:, 3] = px[:, 1]
+        # In place: a 4096² image is 67 M floats, and every temporary costs a second or more.
         if image.is_float:
             storage = "FLOAT"
-            texels = np.ascontiguousarray(np.nan_to_num(rgba, nan=0.0, posinf=0.0, neginf=0.0), np.float32)
+            texels = np.nan_to_num(rgba, copy=False, nan=0.0, posinf=0.0, neginf=0.0)
         else:   # Blender hands 8-bit texels out as k/255: back to the bytes they are
             storage = "BYTE"
-            texels = np.ascontiguousarray(np.clip(np.rint(rgba * 255.0), 0, 255).astype(np.uint8))
+            np.multiply(rgba, 255.0, out=rgba)
+            np.add(rgba, 0.5, out=rgba)
+            np.clip(rgba, 0.0, 255.0, out=rgba)
+            texels = rgba.astype(np.uint8)
         self.texture_info.append([self.texel_count[storage], width, height,
                                   self.enum("tex_color_spaces")[self._color_space(image)],
                                   self.enum("tex_storages")[storage]])
@@ -221,10 +225,10 @@ class ShaderTables:
             "shader_programs": np.array(self.program_start, np.uint32),
         }
         if self.texture_info:
-            if self.texel_chunks["FLOAT"]:
-                out["textures"] = np.concatenate(self.texel_chunks["FLOAT"])
-            if self.texel_chunks["BYTE"]:
-                out["textures_u8"] = np.concatenate(self.texel_chunks["BYTE"])
+            for storage, key in (("FLOAT", "textures"), ("BYTE", "textures_u8")):
+                chunks = self.texel_chunks[storage]
+                if chunks:
+                    out[key] = chunks[0] if len(chunks) == 1 else np.concatenate(chunks)
             out["texture_info"] = np.array(self.texture_info, np.uint32).reshape(-1, 5)
         if self.ramps:
             out["ramps"] = np.stack(self.ramps).astype(np.float32)
