@@ -21,6 +21,29 @@ LIGHT_TYPES = {"POINT": 0, "SPOT": 1, "SUN": 2, "AREA": 3}
 INSTANCE_FLAGS = {"CAMERA": 1, "DIFFUSE": 2, "GLOSSY": 4, "TRANSMISSION": 8, "SHADOW": 16, "HOLDOUT": 32}
 INTEGRATORS = ("PATH",)
 
+# Shader programs (docs/architecture.md, "Shader programs"): every enumeration by its native name, in value order.
+SHADER_ENUMS = {
+    "shader_ops": ("CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE",
+                   "AVERAGE", "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST"),
+    "coord_kinds": ("UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING"),
+    "math_ops": ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER", "LOGARITHM", "SQRT",
+                 "INVERSE_SQRT", "ABSOLUTE", "EXPONENT", "MINIMUM", "MAXIMUM", "LESS_THAN", "GREATER_THAN", "SIGN",
+                 "COMPARE", "SMOOTH_MIN", "SMOOTH_MAX", "ROUND", "FLOOR", "CEIL", "TRUNC", "FRACT", "MODULO", "WRAP",
+                 "SNAP", "PINGPONG", "SINE", "COSINE", "TANGENT", "ARCSINE", "ARCCOSINE", "ARCTANGENT", "ARCTAN2",
+                 "SINH", "COSH", "TANH", "RADIANS", "DEGREES"),
+    "mix_blends": ("MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
+                   "LINEAR_LIGHT", "DIFFERENCE", "SUBTRACT", "DIVIDE", "HUE", "SATURATION", "VALUE", "COLOR"),
+    "color_models": ("RGB", "HSV", "HSL"),
+    "normal_map_spaces": ("TANGENT", "OBJECT", "WORLD", "BLENDER_OBJECT", "BLENDER_WORLD"),
+    "image_projections": ("FLAT", "EQUIRECTANGULAR", "MIRROR_BALL"),
+    "tex_interpolations": ("CLOSEST", "LINEAR", "CUBIC"),
+    "tex_extensions": ("REPEAT", "EXTEND", "CLIP"),
+    "tex_color_spaces": ("LINEAR", "SRGB"),
+    "tex_storages": ("FLOAT", "BYTE"),
+    "input_targets": ("CLOSURE", "EMISSION", "NORMAL", "WORLD"),
+}
+RAMP_SIZE = 256   # entries per ColorRamp table
+
 
 def _cap(key, fallback):
     value = native.capabilities().get(key)
@@ -54,6 +77,11 @@ def light_types():
 def instance_flags():
     """Bits of the `instance_flags` array: the ray types an object is visible to, and holdout."""
     return dict(_cap("instance_flags", INSTANCE_FLAGS))
+
+
+def shader_enum(key):
+    """{name: value} of one shader-program enumeration (SHADER_ENUMS keys)."""
+    return dict(_cap(key, {name: i for i, name in enumerate(SHADER_ENUMS[key])}))
 
 
 def integrators():

@@ -117,6 +117,27 @@ void check_closure(ClosureType type, const ClosureRow& r, const std::string& whe
 
 }  // namespace
 
+Bsdf closure_list_bsdf(const ClosureType* types, const float* rows, size_t n, bool backfacing) {
+    const size_t stride = closure_columns().size();
+    Bsdf out;
+    for (size_t c = 0; c < n; ++c) {
+        const ClosureRow row{rows + c * stride};
+        Bsdf piece = closure_bsdf(types[c], row, backfacing);
+        piece.scale(row.rgb(WeightR));
+        out = add(out, piece);
+    }
+    return out;
+}
+
+void sanitize_closure_row(float* row) {
+    for (size_t c = 0; c < closure_columns().size(); ++c)
+        if (!std::isfinite(row[c])) row[c] = 0.f;
+    for (int c : {int(WeightR), int(WeightR) + 1, int(WeightR) + 2, int(ColorR), int(ColorR) + 1, int(ColorR) + 2,
+                  int(SubsurfaceR), int(SubsurfaceR) + 1, int(SubsurfaceR) + 2})
+        row[c] = std::fmax(row[c], 0.f);
+    row[Ior] = std::fmax(row[Ior], 1e-5f);
+}
+
 std::vector<Material> load_materials(const SceneArrays& arrays) {
     const Array& types = arrays.get("material_type");
     const Array& rows = arrays.get("materials");

@@ -33,6 +33,23 @@ struct Affine {
                m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     }
 
+    /// The inverse transform (the 3×3 part must be invertible).
+    Affine inverse() const {
+        const Affine cof = normal_matrix();  // cofactors: inverse = cofactorᵀ / det
+        const float inv_det = 1.f / determinant3();
+        Affine r;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) r.m[i][j] = cof.m[j][i] * inv_det;
+        const Vec3 t = r.vector(translation());
+        for (int i = 0; i < 3; ++i) r.m[i][3] = -t[i];
+        return r;
+    }
+    /// The transpose of the 3×3 part applied to v (world → object for normals, up to scale).
+    Vec3 transpose_vector(const Vec3& v) const {
+        return {m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z, m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+                m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z};
+    }
+
     /// Cofactor matrix of the 3×3 part: transforms normals (inverse transpose up to a positive factor
     /// det·(...)); keeps the normal's orientation consistent with the transformed winding.
     Affine normal_matrix() const {

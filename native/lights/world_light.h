@@ -1,21 +1,25 @@
-// The world background as a light: constant radiance from every direction (Cycles' Background shader,
-// or the world colour). Sampled uniformly over the sphere (p = 1/4π) and combined with BSDF sampling by
-// MIS. (Importance-sampled environment maps belong to the scene-fidelity work.)
+// The world background as a light: Cycles' Background shader. A constant colour is sampled uniformly over
+// the sphere (p = 1/4π); a varying one (an Environment Texture, lights/environment_light.h) by its
+// luminance. Either combines with BSDF sampling by MIS.
 #pragma once
 
 #include <limits>
+#include <memory>
 
 #include "core/math.h"
+#include "lights/environment_light.h"
 #include "lights/light_sample.h"
 #include "sampling/warp.h"
 
 namespace candela {
 
 struct WorldLight {
-    Color radiance;
+    Color radiance;           // the constant colour; with an environment its mean radiance (power, bounds)
     float scene_radius = 1.f;
+    std::shared_ptr<const EnvironmentMap> environment;  // null: constant
 
     LightSample sample_li(const LightSampleContext&, Vec2 u) const {
+        if (environment) return environment->sample(u);
         LightSample s;
         s.wi = sample_uniform_sphere(u);
         s.pdf = uniform_sphere_pdf();
@@ -23,8 +27,8 @@ struct WorldLight {
         s.Li = radiance;
         return s;
     }
-    float pdf_li(const Vec3&) const { return uniform_sphere_pdf(); }
-    Color Le(const Vec3&) const { return radiance; }
+    float pdf_li(const Vec3& wi) const { return environment ? environment->pdf(wi) : uniform_sphere_pdf(); }
+    Color Le(const Vec3& d) const { return environment ? environment->Le(d) : radiance; }
     float power() const { return 4.f * k_pi * k_pi * scene_radius * scene_radius * luminance(radiance); }
 };
 

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bsdf/material.h"
+#include "bsdf/material_inputs.h"
 #include "core/error.h"
 #include "film/exr_io.h"
 #include "film/pixel_filter.h"
@@ -13,13 +14,15 @@
 #include "sampling/sampler.h"
 #include "scene/ray_visibility.h"
 #include "session/session.h"
+#include "texture/node_math.h"
+#include "texture/shader_program.h"
 
 namespace py = pybind11;
 using namespace candela;
 
 namespace {
 
-constexpr int k_abi_version = 2;  // 2: closure table
+constexpr int k_abi_version = 3;  // 2: closure table; 3: shader programs, textures, UVs
 
 template <typename T>
 void add_array(SceneArrays& arrays, const std::string& key, ElemType type, const py::handle& value) {
@@ -113,6 +116,24 @@ py::dict capabilities() {
     instance_flags["SHADOW"] = int(k_ray_shadow);
     instance_flags["HOLDOUT"] = int(k_object_holdout);
     d["instance_flags"] = instance_flags;
+    // Shader programs (docs/architecture.md): every enumeration the add-on encodes, by name → value.
+    auto enum_dict = [](const std::vector<std::string>& names) {
+        py::dict e;
+        for (size_t i = 0; i < names.size(); ++i) e[py::str(names[i])] = i;
+        return e;
+    };
+    d["shader_ops"] = enum_dict(shader_op_names());
+    d["coord_kinds"] = enum_dict(coord_kind_names());
+    d["math_ops"] = enum_dict(math_op_names());
+    d["mix_blends"] = enum_dict(mix_blend_names());
+    d["color_models"] = enum_dict(color_model_names());
+    d["normal_map_spaces"] = enum_dict(normal_map_space_names());
+    d["image_projections"] = enum_dict(image_projection_names());
+    d["tex_interpolations"] = enum_dict(tex_interpolation_names());
+    d["tex_extensions"] = enum_dict(tex_extension_names());
+    d["tex_color_spaces"] = enum_dict(tex_color_space_names());
+    d["tex_storages"] = enum_dict(tex_storage_names());
+    d["input_targets"] = enum_dict(input_target_names());
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;

@@ -6,30 +6,11 @@
 #include <string>
 
 #include "core/error.h"
+#include "bsdf/material_inputs.h"
 #include "scene/scene_arrays.h"
+#include "scene/scene_parts.h"
 
 namespace candela {
-
-/// Per-triangle shading data of one mesh, in the space its Embree geometry uses.
-struct Scene::MeshShading {
-    std::vector<uint32_t> material;
-    std::vector<uint8_t> smooth;
-    std::vector<Vec3> normals;          // 3 per triangle, or empty
-    std::vector<int32_t> emissive_rank; // index among the mesh's emissive triangles, −1 if not emissive
-};
-
-/// What a top-level Embree geometry id stands for.
-struct Scene::Placement {
-    uint32_t mesh = 0;
-    uint32_t pass_index = 0;  // Blender's object pass index (the IndexOB pass)
-    bool instanced = false;
-    // A mirroring transform (det < 0) reverses the winding: the winding normal then points into the object,
-    // so it is flipped back (as Cycles does for negative scale) and glass keeps its inside.
-    bool mirrored = false;
-    float magnitude = 0.f;   // largest |coordinate| of its vertices in camera-world space (rounding scale)
-    Affine normal_to_world;  // cofactor matrix (instances only)
-    int32_t light_base = -1; // light index of the mesh's first emissive triangle in this placement
-};
 
 /// Embree's per-query context plus what filter_hits needs. The context filter runs for every candidate hit.
 struct Scene::QueryContext {
@@ -139,6 +120,9 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
     m_offset = -m_camera.position();
     m_camera.translate(m_offset);
     m_materials = load_materials(arrays);
+    m_shaders = ShaderLibrary::load(arrays);
+    m_material_inputs = load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg);
+    m_threads = params.get<int>("threads", 0);
     build(arrays, cancel);
 }
 
@@ -187,6 +171,8 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         int32_t rank = 0;
         for (size_t t = 0; t < n; ++t)
             if (m_materials[s.material[t]].is_emissive()) s.emissive_rank[t] = rank++;
+        if (std::any_of(s.material.begin(), s.material.end(), [&](uint32_t k) { return m_materials[k].inputs >= 0; }))
+            s.attributes = MeshAttributes::load(arrays, m, r.tri_begin, r.tri_end);
         bool any_smooth = false;
         if (smooth_arr && normals_arr) {
             const uint8_t* sm = smooth_arr->data<uint8_t>() + r.tri_begin;
@@ -296,6 +282,8 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         m_has_holdouts |= (flags & k_object_holdout) != 0;
         m_hidden_from |= ~flags & k_ray_all;
         pl.mirrored = xf.determinant3() < 0.f;
+        pl.object_to_world = xf;
+        pl.world_to_object = xf.inverse();
         const size_t n = ranges[m].tri_end - ranges[m].tri_begin;
         m_stats.instanced_triangles += n;
         if (uses[m] == 1) {
@@ -372,8 +360,9 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         const float* c = w->data<float>();
         const Color col(c[0], c[1], c[2]);
         if (min_component(col) < 0.f) throw InvalidScene("world_color must not be negative");
-        if (!is_black(col)) m_lights.add(WorldLight{col, m_radius});
+        if (!is_black(col) && m_world_program < 0) m_lights.add(WorldLight{col, m_radius, nullptr});
     }
+    if (m_world_program >= 0) add_environment();
     m_lights.finalize(m_radius);
 }
 
@@ -437,6 +426,8 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     hit->material = s.material[prim];
     hit->primitive = {rh.hit.geomID, prim, rh.hit.instID[0]};
     hit->object = object;
+    hit->b1 = rh.hit.u;
+    hit->b2 = rh.hit.v;
     const int32_t rank = s.emissive_rank[prim];
     hit->light = (rank >= 0 && pl.light_base >= 0) ? pl.light_base + rank : -1;
     return true;

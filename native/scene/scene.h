@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bsdf/material.h"
+#include "bsdf/material_inputs.h"
 #include "core/parallel.h"
 #include "core/params.h"
 #include "core/transform.h"
@@ -17,6 +18,7 @@
 #include "scene/camera.h"
 #include "scene/embree_device.h"
 #include "scene/ray_visibility.h"
+#include "scene/shading_point.h"
 #include "scene/surface_hit.h"
 
 namespace candela {
@@ -53,6 +55,10 @@ public:
     /// surface's plane is seen by camera and BSDF rays exactly when light sampling sees it.
     bool intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t) const;
 
+    /// The material at a hit seen from direction wo (toward the viewer): its BSDF for that side, emission and
+    /// shading normal, with textures and normal maps evaluated there (scene/shading.cpp).
+    ShadingPoint shade(const SurfaceHit& hit, const Vec3& wo) const;
+
     const Camera& camera() const { return m_camera; }
     const std::vector<Material>& materials() const { return m_materials; }
     const LightSet& lights() const { return m_lights; }
@@ -81,6 +87,7 @@ private:
     static void filter_hits(const RTCFilterFunctionNArguments* args);
     /// Priority among coplanar hits: emitters first, then the later geometry, then the higher triangle index.
     bool outranks(const PrimitiveRef& a, const PrimitiveRef& b) const;
+    void add_environment();
 
     EmbreeDevice m_device;
     EmbreeScene m_top;
@@ -93,6 +100,10 @@ private:
     uint32_t m_hidden_from = 0;              // ray types some object is invisible to (they need the filter)
     Camera m_camera;
     std::vector<Material> m_materials;
+    std::shared_ptr<const ShaderLibrary> m_shaders;
+    std::vector<MaterialInputs> m_material_inputs;  // textured materials (Material::inputs)
+    int32_t m_world_program = -1, m_world_reg = -1;  // the world shader, if it varies with direction
+    int m_threads = 0;
     LightSet m_lights;
     Vec3 m_offset;  // added to world positions: −camera position
     float m_radius = 1.f;

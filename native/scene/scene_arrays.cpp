@@ -29,6 +29,17 @@ const std::vector<ArraySpec>& array_schema() {
         {"lights", ElemType::F32, {-1, -1}, false},
         {"camera_to_world", ElemType::F32, {4, 4}, true},
         {"world_color", ElemType::F32, {3}, false},
+        {"uvs", ElemType::F32, {-1, 3, 2}, false},
+        {"tangents", ElemType::F32, {-1, 3, 4}, false},
+        {"mesh_texspace", ElemType::F32, {-1, 6}, false},
+        {"textures", ElemType::F32, {-1, 4}, false},
+        {"textures_u8", ElemType::U8, {-1, 4}, false},
+        {"texture_info", ElemType::U32, {-1, 5}, false},
+        {"ramps", ElemType::F32, {-1, 256, 4}, false},
+        {"shader_consts", ElemType::F32, {-1}, false},
+        {"shader_ops", ElemType::U32, {-1, 8}, false},
+        {"shader_programs", ElemType::U32, {-1}, false},
+        {"input_bindings", ElemType::U32, {-1, 6}, false},
     };
     return schema;
 }
@@ -141,6 +152,10 @@ void SceneArrays::validate() const {
     check_rows("tri_material", T);
     check_rows("tri_smooth", T);
     check_rows("normals", T);
+    check_rows("uvs", T);
+    check_rows("tangents", T);
+    if (has("uvs")) check_finite(get("uvs"), "uvs", 6);
+    if (has("tangents")) check_finite(get("tangents"), "tangents", 12);
     const uint32_t* mat = get("tri_material").data<uint32_t>();
     for (size_t i = 0; i < T; ++i)
         if (mat[i] >= K)
@@ -157,6 +172,10 @@ void SceneArrays::validate() const {
     for (size_t m = 0; m + 1 < M1; ++m)
         if (start[m + 1] < start[m]) throw InvalidScene("'mesh_tri_start' decreases at mesh " + std::to_string(m));
 
+    if (has("mesh_texspace") && rows("mesh_texspace") != M1 - 1)
+        throw InvalidScene("'mesh_texspace' has " + std::to_string(rows("mesh_texspace")) + " rows, expected " +
+                           std::to_string(M1 - 1) + " (one per mesh)");
+    if (has("mesh_texspace")) check_finite(get("mesh_texspace"), "mesh_texspace", 6);
     if (rows("instance_transform") != I)
         throw InvalidScene("'instance_transform' has " + std::to_string(rows("instance_transform")) +
                            " rows but 'instance_mesh' has " + std::to_string(I));

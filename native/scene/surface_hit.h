@@ -25,6 +25,7 @@ struct SurfaceHit {
     int32_t light = -1;  // index in the LightSet if the triangle emits, else −1
     PrimitiveRef primitive;  // the triangle hit
     uint32_t object = 0;     // top-level object (Embree geometry id) the triangle belongs to
+    float b1 = 0.f, b2 = 0.f;  // barycentric weights of the triangle's second and third corners
 };
 
 }  // namespace candela

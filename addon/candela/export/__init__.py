@@ -16,7 +16,8 @@ from .common import ExportError, Warnings
 from .geometry import GeometryTable
 from .lights import LightTable
 from .materials import MaterialTable
-from .world import world_color
+from .shader_tables import ShaderTables
+from .world import world_arrays
 
 __all__ = ["export_scene", "render_camera", "name_objects", "ExportError", "Warnings"]
 
@@ -89,7 +90,8 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
     """Export the evaluated scene seen through `camera` (an original camera object, see render_camera)."""
     warnings = warnings if warnings is not None else Warnings()
     scene = depsgraph.scene
-    materials = MaterialTable(warnings)
+    tables = ShaderTables(warnings)
+    materials = MaterialTable(warnings, tables)
     geometry = GeometryTable(materials)
     lights = LightTable(warnings)
     bits = schema.instance_flags()
@@ -122,5 +124,6 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
     arrays.update(materials.arrays())
     arrays.update(lights.arrays())
     arrays["camera_to_world"] = camera_to_world(camera.original.evaluated_get(depsgraph).matrix_world)
-    arrays["world_color"] = world_color(scene.world, warnings)
+    arrays.update(world_arrays(scene.world, warnings, tables))
+    arrays.update(tables.arrays())   # after every material and the world: the programs and their bindings
     return arrays

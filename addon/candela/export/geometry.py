@@ -51,10 +51,11 @@ class GeometryTable:
                 self.mesh_objects[index].append(ob.name)
 
     def _add_mesh(self, ob, slots):
-        data = read_mesh(ob)
+        rows = np.array([self.materials.row_of(m) for m in slots] or [self.materials.row_of(None)], np.uint32)
+        uses = frozenset().union(*(self.materials.uses(int(r)) for r in rows))
+        data = read_mesh(ob, uses, self.materials.warnings)
         if data is None:
             return -1
-        rows = np.array([self.materials.row_of(m) for m in slots] or [self.materials.row_of(None)], np.uint32)
         # Out-of-range indices (slots removed after assignment) clamp to the last slot, as Blender draws them.
         tri_material = rows[np.clip(data.material_index, 0, len(rows) - 1)]
         self.meshes.append((data, tri_material))
@@ -80,7 +81,19 @@ class GeometryTable:
         tri_counts = np.array([len(d.triangles) for d in datas], np.int64)
         vertex_base = np.concatenate([[0], np.cumsum(vertex_counts)[:-1]]).astype(np.uint32)
         triangles = np.concatenate([d.triangles + vertex_base[i] for i, d in enumerate(datas)])
+        optional = {}
+        # Texture attributes only when some textured material reads them; other meshes' rows stay 0.
+        if any(d.uvs is not None for d in datas):
+            optional["uvs"] = np.concatenate([d.uvs if d.uvs is not None else np.zeros((len(d.triangles), 3, 2), np.float32)
+                                              for d in datas])
+        if any(d.tangents is not None for d in datas):
+            optional["tangents"] = np.concatenate(
+                [d.tangents if d.tangents is not None else np.zeros((len(d.triangles), 3, 4), np.float32) for d in datas])
+        if any(d.texspace is not None for d in datas):
+            unit = np.array([0, 0, 0, 1, 1, 1], np.float32)
+            optional["mesh_texspace"] = np.stack([d.texspace if d.texspace is not None else unit for d in datas])
         return {
+            **optional,
             "positions": np.ascontiguousarray(np.concatenate([d.positions for d in datas]), np.float32),
             "triangles": np.ascontiguousarray(triangles, np.uint32),
             "normals": np.ascontiguousarray(np.concatenate([d.normals for d in datas]), np.float32),

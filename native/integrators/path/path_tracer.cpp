@@ -72,7 +72,6 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
     const int k = cfg.light_samples;
     const bool nee_enabled = !lights.empty();
     const WardLightSampler* ward = m_light_sampler.ward();
-    const auto& materials = m_scene.materials();
 
     for (;; ++bounce) {
         SurfaceHit hit;
@@ -124,15 +123,15 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
 
         if (bounce == 0 && !camera_hit(m_scene, ray, hit, st.aov, alpha)) return;  // data passes, holdout
 
-        const Material& material = materials[hit.material];
-        if (material.is_emissive()) {
-            add_emission(material.emission, hit.light >= 0 ? light_pdf(uint32_t(hit.light), hit.t) : 0.f);
+        const ShadingPoint sp = m_scene.shade(hit, -ray.d);  // the material here: textures, normal map
+        if (!is_black(sp.emission)) {
+            add_emission(sp.emission, hit.light >= 0 ? light_pdf(uint32_t(hit.light), hit.t) : 0.f);
         }
         if (bounce > cfg.max_bounces) return;
 
         // Local shading frame on the side the path arrives from (surfaces are two-sided).
         const Vec3 wo = -ray.d;
-        Vec3 ng = hit.ng, ns = hit.ns;
+        Vec3 ng = hit.ng, ns = sp.ns;
         const bool backfacing = dot(wo, ng) < 0.f;  // arriving against the winding normal (glass: from inside)
         if (backfacing) {
             ng = -ng;
@@ -140,7 +139,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
         }
         const Frame frame(dot(wo, ns) > 0.f ? ns : ng);  // a shading normal facing away: fall back
         const Vec3 wo_local = frame.to_local(wo);
-        const Bsdf& bsdf = material.bsdf(backfacing);
+        const Bsdf& bsdf = sp.bsdf();
 
         // Named sample dimensions: each is the same sequence dimension for every sample of every pixel, so a
         // value is drawn only where it is used (skipping one never shifts another).

@@ -1,0 +1,52 @@
+#include "scene/mesh_attributes.h"
+
+#include "scene/scene_arrays.h"
+
+namespace candela {
+
+MeshAttributes MeshAttributes::load(const SceneArrays& arrays, uint32_t mesh, uint32_t tri_begin, uint32_t tri_end) {
+    MeshAttributes a;
+    const size_t n = tri_end - tri_begin;
+    if (const Array* uvs = arrays.find("uvs")) {
+        const float* p = uvs->data<float>() + 6 * size_t(tri_begin);
+        a.uv.resize(3 * n);
+        for (size_t i = 0; i < 3 * n; ++i) a.uv[i] = Vec2{p[2 * i], p[2 * i + 1]};
+    }
+    if (const Array* t = arrays.find("tangents")) {
+        const float* p = t->data<float>() + 12 * size_t(tri_begin);
+        a.tangent.assign(p, p + 12 * n);
+    }
+    if (const Array* ts = arrays.find("mesh_texspace")) {
+        const float* p = ts->data<float>() + 6 * size_t(mesh);
+        a.texspace_location = Vec3(p[0], p[1], p[2]);
+        a.texspace_size = Vec3(p[3], p[4], p[5]);
+    }
+    return a;
+}
+
+Vec3 MeshAttributes::uv_at(uint32_t t, float b1, float b2) const {
+    if (uv.empty()) return Vec3(0.f);
+    const Vec2* c = &uv[3 * size_t(t)];
+    const float b0 = 1.f - b1 - b2;
+    return {b0 * c[0].x + b1 * c[1].x + b2 * c[2].x, b0 * c[0].y + b1 * c[1].y + b2 * c[2].y, 0.f};
+}
+
+bool MeshAttributes::tangent_at(uint32_t t, float b1, float b2, Vec3* tangent_out, float* sign) const {
+    if (tangent.empty()) return false;
+    const float* c = &tangent[12 * size_t(t)];
+    const float b0 = 1.f - b1 - b2;
+    *tangent_out = Vec3(b0 * c[0] + b1 * c[4] + b2 * c[8], b0 * c[1] + b1 * c[5] + b2 * c[9],
+                        b0 * c[2] + b1 * c[6] + b2 * c[10]);
+    const float s = b0 * c[3] + b1 * c[7] + b2 * c[11];
+    *sign = s < 0.f ? -1.f : 1.f;
+    return !is_black(*tangent_out);
+}
+
+Vec3 MeshAttributes::generated(const Vec3& p) const {
+    Vec3 g;
+    for (int k = 0; k < 3; ++k)
+        g[k] = texspace_size[k] != 0.f ? (p[k] - texspace_location[k]) / (2.f * texspace_size[k]) + 0.5f : 0.5f;
+    return g;
+}
+
+}  // namespace candela

@@ -1,0 +1,38 @@
+// The parts of Scene shared by its translation units (scene.cpp builds them, shading.cpp reads them at
+// hits). Not part of the interface integrators use.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/transform.h"
+#include "scene/mesh_attributes.h"
+#include "scene/scene.h"
+
+namespace candela {
+
+/// Per-triangle shading data of one mesh, in the space its Embree geometry uses.
+struct Scene::MeshShading {
+    std::vector<uint32_t> material;
+    std::vector<uint8_t> smooth;
+    std::vector<Vec3> normals;          // 3 per triangle, or empty
+    std::vector<int32_t> emissive_rank; // index among the mesh's emissive triangles, −1 if not emissive
+    MeshAttributes attributes;          // only for meshes with textured materials
+};
+
+/// What a top-level Embree geometry id stands for.
+struct Scene::Placement {
+    uint32_t mesh = 0;
+    uint32_t pass_index = 0;  // Blender's object pass index (the IndexOB pass)
+    bool instanced = false;
+    // A mirroring transform (det < 0) reverses the winding: the winding normal then points into the object,
+    // so it is flipped back (as Cycles does for negative scale) and glass keeps its inside.
+    bool mirrored = false;
+    float magnitude = 0.f;   // largest |coordinate| of its vertices in camera-world space (rounding scale)
+    Affine normal_to_world;  // cofactor matrix (instances only)
+    int32_t light_base = -1; // light index of the mesh's first emissive triangle in this placement
+    Affine object_to_world;  // object → camera-world (flattened meshes too: textures need object space)
+    Affine world_to_object;
+};
+
+}  // namespace candela

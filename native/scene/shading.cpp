@@ -1,0 +1,66 @@
+// Scene::shade: the material at a hit, with its shader program evaluated there (textures, Normal Map), and
+// the world's environment light.
+#include <cmath>
+
+#include "core/parallel.h"
+#include "scene/scene_parts.h"
+
+namespace candela {
+
+ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
+    const Material& material = m_materials[hit.material];
+    ShadingPoint sp;
+    sp.ns = hit.ns;
+    sp.emission = material.emission;
+    sp.backfacing = dot(wo, hit.ng) < 0.f;
+    sp.use(&material.bsdf(sp.backfacing));
+    if (material.inputs < 0) return sp;  // constant inputs: everything was built at load
+
+    // Where on the object the hit is: UV, tangent frame, object-space position.
+    const MaterialInputs& mi = m_material_inputs[size_t(material.inputs)];
+    const PrimitiveRef& prim = hit.primitive;
+    const Placement& pl = m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom];
+    const MeshAttributes& attr = m_shading[pl.mesh].attributes;
+    ShadingInputs in;
+    in.uv = attr.uv_at(prim.prim, hit.b1, hit.b2);
+    in.object = pl.world_to_object.point(hit.p);
+    in.generated = attr.generated(in.object);
+    in.normal = hit.ns;
+    const Vec3 n_object = pl.object_to_world.transpose_vector(hit.ns);
+    const float n_len = length(n_object);
+    in.normal_object = n_len > 0.f ? n_object / n_len : Vec3(0.f, 0.f, 1.f);
+    in.incoming = wo;
+    Vec3 tangent;
+    if (attr.tangent_at(prim.prim, hit.b1, hit.b2, &tangent, &in.tangent_sign)) {
+        in.tangent = pl.object_to_world.vector(tangent);
+        in.has_tangent = true;
+    }
+    in.normal_to_world = pl.object_to_world.normal_matrix();
+
+    ShaderRegisters regs(m_shaders->program_size(mi.program));
+    m_shaders->evaluate(mi.program, in, regs.data());
+    if (mi.emission_reg >= 0) sp.emission = vmax(regs[uint32_t(mi.emission_reg)], Color(0.f));
+    if (mi.normal_reg >= 0) {
+        const Vec3 n = regs[uint32_t(mi.normal_reg)];
+        const float len = length(n);
+        if (len > 0.f && std::isfinite(len)) sp.ns = n / len;
+    }
+    if (!mi.types.empty()) sp.own(mi.bsdf(regs.data(), sp.backfacing));
+    return sp;
+}
+
+void Scene::add_environment() {
+    const auto program = uint32_t(m_world_program), reg = uint32_t(m_world_reg);
+    if (!m_shaders->varying(program, reg)) {  // a constant after all: the uniform world light
+        ShaderRegisters regs(m_shaders->program_size(program));
+        m_shaders->evaluate(program, ShadingInputs::world(Vec3(0.f, 0.f, 1.f)), regs.data());
+        const Color c = vmax(regs[reg], Color(0.f));
+        if (!is_black(c)) m_lights.add(WorldLight{c, m_radius, nullptr});
+        return;
+    }
+    auto env = std::make_shared<const EnvironmentMap>(m_shaders, program, reg, resolve_thread_count(m_threads));
+    if (is_black(env->mean_radiance())) return;  // a black environment emits nothing
+    m_lights.add(WorldLight{env->mean_radiance(), m_radius, env});
+}
+
+}  // namespace candela

@@ -1,0 +1,179 @@
+// Loading and validation of the shader library (textures, ramps, constants, programs).
+#include "texture/shader_program.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "scene/scene_arrays.h"
+#include "texture/node_math.h"
+
+namespace candela {
+
+const std::vector<std::string>& shader_op_names() {
+    static const std::vector<std::string> names = {
+        "CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE", "AVERAGE",
+        "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST"};
+    return names;
+}
+const std::vector<std::string>& coord_kind_names() {
+    static const std::vector<std::string> names = {"UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING"};
+    return names;
+}
+const std::vector<std::string>& image_projection_names() {
+    static const std::vector<std::string> names = {"FLAT", "EQUIRECTANGULAR", "MIRROR_BALL"};
+    return names;
+}
+const std::vector<std::string>& color_model_names() {
+    static const std::vector<std::string> names = {"RGB", "HSV", "HSL"};
+    return names;
+}
+const std::vector<std::string>& normal_map_space_names() {
+    static const std::vector<std::string> names = {"TANGENT", "OBJECT", "WORLD", "BLENDER_OBJECT", "BLENDER_WORLD"};
+    return names;
+}
+
+namespace {
+
+/// Registers each operation reads (a, b, c in that order).
+int arity(ShaderOpCode code) {
+    switch (code) {
+        case ShaderOpCode::Const:
+        case ShaderOpCode::Coord: return 0;
+        case ShaderOpCode::Image:
+        case ShaderOpCode::ImageAlpha:
+        case ShaderOpCode::Ramp:
+        case ShaderOpCode::RampAlpha:
+        case ShaderOpCode::Luminance:
+        case ShaderOpCode::Average:
+        case ShaderOpCode::Separate:
+        case ShaderOpCode::Mapping: return 1;
+        case ShaderOpCode::NormalMap:
+        case ShaderOpCode::Invert: return 2;
+        case ShaderOpCode::Mix:
+        case ShaderOpCode::Math:
+        case ShaderOpCode::Combine:
+        case ShaderOpCode::BrightContrast: return 3;
+    }
+    return 0;
+}
+
+}  // namespace
+
+ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, std::vector<float> consts,
+                             std::vector<ShaderOp> ops, std::vector<uint32_t> program_start)
+    : m_pools(std::move(textures)), m_ramps(std::move(ramps)), m_consts(std::move(consts)), m_ops(std::move(ops)),
+      m_program_start(std::move(program_start)) {
+    const size_t counts[2] = {m_pools.floats.size() / 4, m_pools.bytes.size() / 4};
+    const char* pools[2] = {"textures", "textures_u8"};
+    if (m_pools.info.size() % 5 != 0) throw InvalidScene("'texture_info' needs 5 columns");
+    for (size_t t = 0; t < m_pools.info.size() / 5; ++t) {
+        const uint32_t* r = &m_pools.info[5 * t];
+        const std::string where = "texture_info[" + std::to_string(t) + "]";
+        if (r[1] == 0 || r[2] == 0) throw InvalidScene(where + ": an image needs a positive width and height");
+        if (r[3] >= tex_color_space_names().size())
+            throw InvalidScene(where + ": colour space " + std::to_string(r[3]) + " is unknown");
+        if (r[4] >= tex_storage_names().size()) throw InvalidScene(where + ": storage " + std::to_string(r[4]) + " is unknown");
+        if (uint64_t(r[0]) + uint64_t(r[1]) * r[2] > counts[r[4]])
+            throw InvalidScene(where + ": texels [" + std::to_string(r[0]) + ", +" + std::to_string(uint64_t(r[1]) * r[2]) +
+                               ") run past the " + std::to_string(counts[r[4]]) + " texels of '" + pools[r[4]] + "'");
+        ImageTexture img;
+        if (TexStorage(r[4]) == TexStorage::Byte) img.bytes = m_pools.bytes.data() + 4 * size_t(r[0]);
+        else img.texels = m_pools.floats.data() + 4 * size_t(r[0]);
+        img.width = r[1];
+        img.height = r[2];
+        img.color_space = TexColorSpace(r[3]);
+        m_textures.push_back(img);
+    }
+    for (size_t i = 0; i < m_pools.floats.size(); ++i)
+        if (!std::isfinite(m_pools.floats[i])) throw InvalidScene("textures[" + std::to_string(i / 4) + "] is not finite");
+    for (size_t i = 0; i < m_ramps.size(); ++i)
+        if (!std::isfinite(m_ramps[i])) throw InvalidScene("ramps: entry " + std::to_string(i) + " is not finite");
+    for (size_t i = 0; i < m_consts.size(); ++i)
+        if (!std::isfinite(m_consts[i])) throw InvalidScene("shader_consts[" + std::to_string(i) + "] is not finite");
+    if (m_ramps.size() % (4 * k_ramp_size) != 0) throw InvalidScene("'ramps' must have shape (R, 256, 4)");
+    const size_t ramp_count = m_ramps.size() / (4 * k_ramp_size);
+
+    if (m_program_start.empty()) {
+        if (!m_ops.empty()) throw InvalidScene("'shader_ops' needs 'shader_programs'");
+        return;
+    }
+    if (m_program_start.front() != 0 || m_program_start.back() != m_ops.size())
+        throw InvalidScene("'shader_programs' must start at 0 and end at the operation count " + std::to_string(m_ops.size()));
+    m_varying.assign(m_ops.size(), 0);
+    for (size_t p = 0; p + 1 < m_program_start.size(); ++p) {
+        const uint32_t begin = m_program_start[p], end = m_program_start[p + 1];
+        if (end <= begin) throw InvalidScene("shader program " + std::to_string(p) + " is empty (or the starts decrease)");
+        m_max_size = std::max(m_max_size, end - begin);
+        for (uint32_t k = begin; k < end; ++k) {
+            const ShaderOp& op = m_ops[k];
+            const uint32_t r = k - begin;
+            const std::string where = "shader program " + std::to_string(p) + ", operation " + std::to_string(r);
+            const int n = arity(op.code);
+            const uint32_t args[3] = {op.a, op.b, op.c};
+            bool varying = op.code == ShaderOpCode::Coord || op.code == ShaderOpCode::NormalMap;
+            for (int j = 0; j < n; ++j) {
+                if (args[j] >= r)
+                    throw InvalidScene(where + " (" + shader_op_names()[size_t(op.code)] + ") reads register " +
+                                       std::to_string(args[j]) + ", which is not computed before it");
+                varying = varying || m_varying[begin + args[j]] != 0;
+            }
+            m_varying[k] = varying ? 1 : 0;
+            auto need = [&](bool ok, const std::string& what) {
+                if (!ok) throw InvalidScene(where + " (" + shader_op_names()[size_t(op.code)] + "): " + what);
+            };
+            switch (op.code) {
+                case ShaderOpCode::Const: need(size_t(op.i[0]) + 3 <= m_consts.size(), "constant offset out of range"); break;
+                case ShaderOpCode::Coord: need(op.i[0] < coord_kind_names().size(), "unknown coordinate kind"); break;
+                case ShaderOpCode::Image:
+                case ShaderOpCode::ImageAlpha:
+                    need(op.i[0] < m_textures.size(), "texture " + std::to_string(op.i[0]) + " does not exist");
+                    need(op.i[1] < tex_interpolation_names().size(), "unknown interpolation");
+                    need(op.i[2] < tex_extension_names().size(), "unknown extension");
+                    need(op.i[3] < image_projection_names().size(), "unknown projection");
+                    break;
+                case ShaderOpCode::Mix: need(op.i[0] < mix_blend_names().size(), "unknown blend type"); break;
+                case ShaderOpCode::Math: need(op.i[0] < math_op_names().size(), "unknown math operation"); break;
+                case ShaderOpCode::Ramp:
+                case ShaderOpCode::RampAlpha: need(op.i[0] < ramp_count, "ramp " + std::to_string(op.i[0]) + " does not exist"); break;
+                case ShaderOpCode::Combine: need(op.i[0] < color_model_names().size(), "unknown colour model"); break;
+                case ShaderOpCode::Separate:
+                    need(op.i[0] < color_model_names().size(), "unknown colour model");
+                    need(op.i[1] < 3, "channel must be 0, 1 or 2");
+                    break;
+                case ShaderOpCode::Mapping: need(size_t(op.i[0]) + 12 <= m_consts.size(), "matrix offset out of range"); break;
+                case ShaderOpCode::NormalMap: need(op.i[0] < normal_map_space_names().size(), "unknown normal map space"); break;
+                default: break;
+            }
+        }
+    }
+}
+
+std::shared_ptr<const ShaderLibrary> ShaderLibrary::load(const SceneArrays& arrays) {
+    auto floats = [&](const char* name) {
+        const Array* a = arrays.find(name);
+        return a ? std::vector<float>(a->data<float>(), a->data<float>() + a->count()) : std::vector<float>();
+    };
+    auto uints = [&](const char* name) {
+        const Array* a = arrays.find(name);
+        return a ? std::vector<uint32_t>(a->data<uint32_t>(), a->data<uint32_t>() + a->count()) : std::vector<uint32_t>();
+    };
+    std::vector<ShaderOp> ops;
+    if (const Array* a = arrays.find("shader_ops")) {
+        const uint32_t* r = a->data<uint32_t>();
+        ops.resize(a->shape[0]);
+        for (size_t k = 0; k < ops.size(); ++k, r += 8) {
+            if (r[0] >= shader_op_names().size())
+                throw InvalidScene("shader_ops[" + std::to_string(k) + "]: operation " + std::to_string(r[0]) + " is unknown");
+            ops[k] = ShaderOp{ShaderOpCode(r[0]), r[1], r[2], r[3], {r[4], r[5], r[6], r[7]}};
+        }
+    }
+    TexturePools pools;
+    pools.floats = floats("textures");
+    pools.info = uints("texture_info");
+    if (const Array* a = arrays.find("textures_u8")) pools.bytes.assign(a->data<uint8_t>(), a->data<uint8_t>() + a->count());
+    return std::make_shared<const ShaderLibrary>(std::move(pools), floats("ramps"), floats("shader_consts"),
+                                                 std::move(ops), uints("shader_programs"));
+}
+
+}  // namespace candela

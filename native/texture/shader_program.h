@@ -1,0 +1,151 @@
+// Shader programs: the node graph feeding a material's closure inputs (or the world's Background), compiled
+// by the add-on into a flat list of operations (docs/architecture.md, "Shader programs"). Operation k of a
+// program writes register k (a colour, a vector, or a value broadcast to three channels) and reads only
+// registers before it, so one forward pass evaluates the whole graph at a shading point.
+// Conversions between socket types are explicit operations (LUMINANCE: colour → value, AVERAGE: vector →
+// value); value → colour/vector is the broadcast itself.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/transform.h"
+#include "core/vec.h"
+#include "texture/image_texture.h"
+
+namespace candela {
+
+class SceneArrays;
+
+enum class ShaderOpCode : uint32_t {
+    Const,           // i0: offset of 3 floats in shader_consts
+    Coord,           // i0: CoordKind
+    Image,           // a: vector; i0: texture, i1: TexInterpolation, i2: TexExtension, i3: ImageProjection
+    ImageAlpha,      // as Image, the alpha channel
+    Mix,             // a: factor, b: A, c: B; i0: MixBlend, i1: clamp factor, i2: clamp result, i3: per-channel factor
+    Math,            // a, b, c per channel; i0: MathOp, i1: clamp result to [0, 1]
+    Ramp,            // a: factor; i0: ramp, i1: interpolate (0 = constant)
+    RampAlpha,       // as Ramp, the alpha channel
+    Luminance,       // a: colour → Rec.709 luminance
+    Average,         // a: vector → (x + y + z)/3
+    Combine,         // a, b, c (first channels); i0: ColorModel
+    Separate,        // a; i0: ColorModel, i1: channel
+    Mapping,         // a: vector; i0: offset of a row-major 3×4 matrix in shader_consts, i1: normalise the result
+    NormalMap,       // a: colour, b: strength; i0: NormalMapSpace
+    Invert,          // a: factor, b: colour
+    BrightContrast,  // a: colour, b: bright, c: contrast
+};
+const std::vector<std::string>& shader_op_names();
+
+/// What a COORD operation reads. Surfaces: UV (u, v, 0) of the render UV map, GENERATED (Blender's texture
+/// space: the object-space position normalised by the mesh's texture-space box), OBJECT (object-space
+/// position), NORMAL (object-space shading normal), WORLD_NORMAL, INCOMING (toward the viewer). The world:
+/// GENERATED, OBJECT and INCOMING are the view direction, NORMAL/WORLD_NORMAL its opposite, UV is 0.
+enum class CoordKind : uint32_t { Uv, Generated, Object, Normal, WorldNormal, Incoming };
+const std::vector<std::string>& coord_kind_names();
+
+enum class ImageProjection : uint32_t { Flat, Equirectangular, MirrorBall };
+const std::vector<std::string>& image_projection_names();
+
+enum class ColorModel : uint32_t { Rgb, Hsv, Hsl };
+const std::vector<std::string>& color_model_names();
+
+/// Spaces of the Normal Map node (Cycles 3.4 svm_node_normal_map).
+enum class NormalMapSpace : uint32_t { Tangent, Object, World, BlenderObject, BlenderWorld };
+const std::vector<std::string>& normal_map_space_names();
+
+/// Equirectangular (u, v) of a direction, Blender's convention: u = ½ − atan2(y, x)/2π, v = 1 − acos(z)/π
+/// (the image centre faces +X, v = 0 is straight down). The direction need not be normalised.
+Vec2 direction_to_equirectangular(const Vec3& d);
+/// The unit direction of equirectangular (u, v).
+Vec3 equirectangular_to_direction(float u, float v);
+
+/// What the program may read at one shading point. World-space vectors are camera-relative world axes.
+struct ShadingInputs {
+    Vec3 uv{0.f}, generated{0.f}, object{0.f};
+    Vec3 normal_object{0.f, 0.f, 1.f};
+    Vec3 normal{0.f, 0.f, 1.f};  // world shading normal, on the side of the winding normal
+    Vec3 incoming{0.f, 0.f, 1.f};
+    // Tangent-space normal maps: the interpolated UV tangent (world) and bitangent sign.
+    Vec3 tangent{0.f};
+    float tangent_sign = 1.f;
+    bool has_tangent = false;
+    Affine normal_to_world;  // object → world for normals (object-space normal maps)
+
+    /// The inputs of the world shader for view direction d.
+    static ShadingInputs world(const Vec3& d);
+};
+
+struct ShaderOp {
+    ShaderOpCode code = ShaderOpCode::Const;
+    uint32_t a = 0, b = 0, c = 0;
+    uint32_t i[4] = {0, 0, 0, 0};
+};
+
+/// The images of a scene: two texel pools and, per image, [first texel, width, height, colour space, storage].
+struct TexturePools {
+    std::vector<float> floats;     // RGBA float32 texels (`textures`)
+    std::vector<uint8_t> bytes;    // RGBA 8-bit texels (`textures_u8`)
+    std::vector<uint32_t> info;    // rows of 5 (`texture_info`)
+};
+
+/// Every shader program of a scene with the images, ramps and constants they use. Immutable after load.
+class ShaderLibrary {
+public:
+    /// Reads and validates textures, ramps and programs; an empty library if the arrays are absent.
+    static std::shared_ptr<const ShaderLibrary> load(const SceneArrays& arrays);
+
+    /// Programs built directly (tests): the pools are taken as they are and validated.
+    ShaderLibrary(TexturePools textures, std::vector<float> ramps, std::vector<float> consts, std::vector<ShaderOp> ops,
+                  std::vector<uint32_t> program_start);
+    ShaderLibrary(const ShaderLibrary&) = delete;  // the texture views point into this object's texel pool
+    ShaderLibrary& operator=(const ShaderLibrary&) = delete;
+
+    size_t program_count() const { return m_program_start.empty() ? 0 : m_program_start.size() - 1; }
+    uint32_t program_size(uint32_t p) const { return m_program_start[p + 1] - m_program_start[p]; }
+    /// True if register r of program p depends on the shading point (else it is the same everywhere).
+    bool varying(uint32_t p, uint32_t r) const { return m_varying[m_program_start[p] + r] != 0; }
+
+    /// Runs program p; regs must hold program_size(p) entries.
+    void evaluate(uint32_t p, const ShadingInputs& in, Vec3* regs) const;
+
+    const std::vector<ImageTexture>& textures() const { return m_textures; }
+    const ShaderOp& op(uint32_t p, uint32_t r) const { return m_ops[m_program_start[p] + r]; }
+
+    /// Largest program size (the register file callers allocate).
+    uint32_t max_program_size() const { return m_max_size; }
+
+private:
+    Vec3 ramp(uint32_t index, float fac, bool interpolate, bool alpha) const;
+
+    TexturePools m_pools;
+    std::vector<ImageTexture> m_textures;
+    std::vector<float> m_ramps;
+    std::vector<float> m_consts;
+    std::vector<ShaderOp> m_ops;
+    std::vector<uint32_t> m_program_start;
+    std::vector<uint8_t> m_varying;
+    uint32_t m_max_size = 0;
+};
+
+/// Entries per ColorRamp table (Cycles bakes ramps into 256 entries and interpolates between them).
+inline constexpr uint32_t k_ramp_size = 256;
+
+/// A register file for one evaluation: on the stack for the usual small programs.
+class ShaderRegisters {
+public:
+    explicit ShaderRegisters(uint32_t size) {
+        if (size > k_inline) m_heap.resize(size);
+    }
+    Vec3* data() { return m_heap.empty() ? m_inline : m_heap.data(); }
+    const Vec3& operator[](uint32_t i) const { return m_heap.empty() ? m_inline[i] : m_heap[i]; }
+
+private:
+    static constexpr uint32_t k_inline = 64;
+    Vec3 m_inline[k_inline];
+    std::vector<Vec3> m_heap;
+};
+
+}  // namespace candela
