@@ -13,14 +13,21 @@
 namespace candela {
 
 /// p moved off the surface along n (n points to the side the new ray leaves from).
+///
+/// Wächter & Binder's absolute step near zero (1/65536 for coordinates below 1/32) assumes unit-sized scenes:
+/// in a scene 1e-4 across it is 15 % of the scene, and rays skip through thin walls. Scenes are in camera-world
+/// space, so a point's own magnitude |p|∞ measures the rounding around it: below 1/32 the step shrinks with it
+/// (|p|∞/2048, equal to 1/65536 at |p|∞ = 1/32). At |p|∞ ≥ 1/32 nothing changes.
 inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& n) {
     constexpr float k_origin = 1.f / 32.f, k_float_scale = 1.f / 65536.f, k_int_scale = 256.f;
+    const float magnitude = std::fmax(std::fabs(p.x), std::fmax(std::fabs(p.y), std::fabs(p.z)));
+    const float float_scale = std::fmin(k_float_scale, magnitude * (k_float_scale / k_origin));
     Vec3 out;
     for (int i = 0; i < 3; ++i) {
         const int32_t of_i = static_cast<int32_t>(k_int_scale * n[i]);
         const int32_t bits = static_cast<int32_t>(float_bits(p[i]));
         const float p_i = bits_float(static_cast<uint32_t>(bits + ((p[i] < 0.f) ? -of_i : of_i)));
-        out[i] = std::fabs(p[i]) < k_origin ? p[i] + k_float_scale * n[i] : p_i;
+        out[i] = std::fabs(p[i]) < k_origin ? p[i] + float_scale * n[i] : p_i;
     }
     return out;
 }

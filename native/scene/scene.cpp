@@ -45,7 +45,7 @@ uint32_t top_level_id(const PrimitiveRef& h) { return h.inst != PrimitiveRef::k_
 /// dot(v0 − o, Ng)/dot(d, Ng) in float, whose rounding is a few ulps of the largest coordinate involved (the
 /// ray origin, the hit point, the triangle's vertices); two triangles lying in one plane (or in planes rotated
 /// and rounded to float from one plane) therefore differ by ~ε·M in plane distance, M the largest magnitude.
-/// 32ε·M (2e-6 M) leaves a wide margin over that and is still 50× below a gap of 1e-4 of the scene's size seen
+/// 32ε·M (2e-6 M) leaves a wide margin over that and is still ~15× below a gap of 1e-4 of the scene's size seen
 /// from inside the scene (M ≈ 3 sizes there).
 constexpr float k_coplanar_ulps = 32.f * 0x1p-24f;
 /// Area lights count up to this relative distance behind a surface: the shadow rays' margin (1 − 1e-4).

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/parallel.h"
 #include "core/vec.h"
 #include "film/film.h"
 
@@ -21,6 +22,7 @@ constexpr double k_shading_bytes = 9.0;              // material (4) + smooth fl
 constexpr double k_normal_bytes = 36.0;              // 3 shading normals, for meshes with smooth faces
 constexpr double k_instance_bytes = 512.0;           // Embree instance, top-level BVH leaf, placement
 constexpr double k_light_bytes = 256.0;              // an emissive triangle's light and its light-tree share
+constexpr double k_thread_bytes = 4e6;               // per build thread: Embree's thread-local allocation blocks
 
 std::string gigabytes(double bytes) {
     char buf[32];
@@ -113,6 +115,7 @@ MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, 
             e.biggest_mesh_triangles = n;
         }
     }
+    if (e.geometry_bytes > 0.0) e.geometry_bytes += k_thread_bytes * resolve_thread_count(params.get<int>("threads", 0));
     return e;
 }
 

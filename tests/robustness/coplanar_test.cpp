@@ -173,6 +173,35 @@ TEST(Coplanar, OverlappingQuadsOfTwoColoursShowOneOfThemEverywhere) {
         }
 }
 
+// The other side of the tie-break: distinct surfaces are never merged. A red quad 1e-4 (of the scene's size) in
+// front of a green one, which would win a tie (it is the later object): every pixel covered by both must be
+// pure red, face-on and at 18° grazing, at every scale and far from the origin. (With a tie tolerance 1000×
+// too wide, every placement fails.)
+TEST(Coplanar, ParallelQuadsAGapOf1e4ApartStayDistinct) {
+    for (const Placement& pl : k_placements)
+        for (const float pitch : {0.f, -1.25f}) {
+            const std::string what = pl.name + (pitch != 0.f ? ", grazing" : ", face-on");
+            const std::vector<float> xf = scale_translate(Vec3(pl.scale), pl.offset);
+            const Vec3 eye = pitch != 0.f ? Vec3(0.f, 1.8f, -1.5f) : Vec3(0.f);
+            const auto cam = camera_rows(pl.offset + eye * pl.scale, pitch);
+            ShadedBuilder b;
+            const uint32_t mr = b.add_material(Color(0.8f, 0.f, 0.f), Color(0.f));
+            const uint32_t mg = b.add_material(Color(0.f, 0.8f, 0.f), Color(0.f));
+            b.add_instance(b.add_quad(Vec3(-1.f, -1.f, -2.f), Vec3(2.f, 0, 0), Vec3(0, 3.f, 0), mr), xf.data());
+            b.add_instance(b.add_quad(Vec3(-1.f, -1.f, -2.f - 1e-4f), Vec3(2.f, 0, 0), Vec3(0, 3.f, 0), mg), xf.data());
+            b.add_point_light(pl.offset, Color(30.f * pl.scale * pl.scale));
+            const RenderResult r = render(b.arrays(cam.data()), params(40, 30, 8, 0, true));
+            const std::vector<uint8_t> covered = covered_interior(r);
+            ASSERT_GT(mask_count(covered), 50u) << what;
+            // The front quad is lit by the light at the camera, so each pixel is red (R > 0, G = 0); the quad behind
+            // shows as green where lit, or black where the front quad shadows it.
+            size_t not_red = 0;
+            for (size_t i = 0; i < covered.size(); ++i)
+                not_red += covered[i] && !(r.rgba[4 * i] > 0.f && r.rgba[4 * i + 1] == 0.f);
+            EXPECT_EQ(not_red, 0u) << what << ": pixels showing the quad behind";
+        }
+}
+
 // The speckle measure can fail: one pixel of a smooth render pushed by 10σ is found, and only that one.
 TEST(Coplanar, SpeckleMeasureFindsAnInjectedOutlier) {
     ShadedBuilder b;

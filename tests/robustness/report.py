@@ -41,6 +41,11 @@ CASES = [
     ("Coplanar.OverlappingQuadsOfTwoColoursShowOneOfThemEverywhere", "two overlapping coplanar quads, pure red and "
      "pure green: face-on, at 18° grazing, rotated off the axes, at 4 scales and offsets",
      "every overlap pixel shows one colour, the same one everywhere (no z-fighting)"),
+    ("Coplanar.ParallelQuadsAGapOf1e4ApartStayDistinct", "a quad 1e-4 (of the scene's size) in front of another "
+     "that would win a tie, face-on and grazing, at 4 scales and offsets",
+     "every pixel shows the front quad: the tie-break never merges distinct surfaces"),
+    ("ScaleInvariance.ARoomRendersTheSameFrom1e5To1e4", "a closed room with a thin shelf at sizes 1e-5, 1e-4, 1e-3, "
+     "1e2 and 1e4", "same image as at size 1 (6σ per pixel, 4σ in the mean): no light through the shelf"),
     ("Coplanar.SpeckleMeasureFindsAnInjectedOutlier", "the speckle measure (local median, 6σ plus local structure)",
      "finds a single injected outlier, and nothing in a clean render"),
     ("ShadingNormals.LowPolySmoothObjectsShadeSmoothlyOutsideTheTerminatorBand", "low-poly smooth-shaded spheres "
@@ -91,7 +96,8 @@ def main():
     build = Path(a.build).resolve()
     junit = build / "robustness-junit.xml"
     subprocess.run(["ctest", "-R", "Fuzz|SelfIntersection|FarFromOrigin|Energy|BadInput|Coplanar|ShadingNormals|"
-                    "LightsInsideClosedObjects|PointLightOnASurface|NegativeScale|Memory|robustness_|python_native",
+                    "LightsInsideClosedObjects|PointLightOnASurface|NegativeScale|Memory|ScaleInvariance|robustness_|"
+                    "python_native",
                     "--output-junit", str(junit)], cwd=build, check=False)
     results = {}
     for case in ET.parse(junit).getroot().iter("testcase"):
