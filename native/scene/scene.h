@@ -26,6 +26,8 @@ struct SceneStats {
     size_t unique_triangles = 0;    // stored once each
     size_t instanced_triangles = 0; // what instancing would have cost flattened
     size_t meshes = 0, instances = 0, emissive_triangles = 0;
+    size_t embree_bytes = 0;        // what Embree holds: vertex/index buffers and BVHs (its memory monitor)
+    size_t shading_bytes = 0;       // Candela's per-triangle shading data and per-instance placements
 };
 
 class Scene {
@@ -43,8 +45,10 @@ public:
     /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the triangles at both ends.
     bool occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from = {},
                   const PrimitiveRef& skip_to = {}) const;
-    /// Closest emitting side of an area light along the ray before tmax: its index and distance.
-    bool intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t) const;
+    /// Closest emitting side of an area light along the ray before tmax: its index and distance. For a
+    /// camera ray (`camera_ray`), lights hidden from the camera (AreaLight::visible_camera false) are skipped.
+    bool intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t,
+                              bool camera_ray = false) const;
 
     const Camera& camera() const { return m_camera; }
     const std::vector<Material>& materials() const { return m_materials; }

@@ -5,6 +5,7 @@
 
 #include "bsdf/material.h"
 #include "core/math.h"
+#include "lights/light.h"
 #include "session/session.h"
 
 namespace candela::test {
@@ -80,7 +81,7 @@ void MeshBuilder::add_light(uint32_t type, const std::vector<float>& row) {
 }
 
 void MeshBuilder::add_point_light(Vec3 pos, Color strength, float radius) {
-    std::vector<float> row(20, 0.f);
+    std::vector<float> row(light_columns().size(), 0.f);
     row[0] = strength.x; row[1] = strength.y; row[2] = strength.z;
     row[3] = pos.x; row[4] = pos.y; row[5] = pos.z;
     row[8] = -1.f;
@@ -102,7 +103,7 @@ SceneArrays MeshBuilder::arrays(const float* camera_rows16) const {
     a.set("materials", ElemType::F32, {material_type.size(), 6}, materials.data());
     if (!light_type.empty()) {
         a.set("light_type", ElemType::U32, {light_type.size()}, light_type.data());
-        a.set("lights", ElemType::F32, {light_type.size(), 20}, lights.data());
+        a.set("lights", ElemType::F32, {light_type.size(), light_columns().size()}, lights.data());
     }
     a.set("camera_to_world", ElemType::F32, {4, 4}, camera_rows16 ? camera_rows16 : identity);
     if (!closure_type.empty()) {
