@@ -13,6 +13,10 @@ so per-render setup (export, BVH build, kernel load, EXR write) cancels out.  Ta
 >= 2.0; mean linear RGB of the S2 images within 2 %.  The raw incoherent-ray rate comes from
 build/bin/candela_bench_rays DUMP_DIR (one JSON line {"rays_per_second": ...}) on a dump of the same scene.
 
+Export numbers (bench/export_bench.py, in Blender): the time a 1-million-triangle mesh takes from Blender's data
+to the native Session (the add-on's export plus the Session's array intake; target < 0.5 s), and the native scene
+memory of 1,000 instances of one mesh against one instance (the mesh must be stored once: Embree instancing).
+
 Prints everything, writes BUILD/bench/bench.json.  Exits non-zero only when something crashed (a render
 failed), never because a target was missed.
 """
@@ -32,6 +36,10 @@ ROOT = os.path.dirname(HERE)
 
 SPEED_TARGET = 2.0          # Candela samples/s over Cycles samples/s
 BRIGHTNESS_TOL = 0.02       # |mean ratio - 1|
+EXPORT_TARGET_S = 0.5       # 1 M triangles from Blender to the native Session
+# 1,000 instances "cost one mesh's memory": the mesh is stored once (same unique triangles) and the scene takes
+# at most 10 % more memory than with one instance (each instance adds a transform and an Embree instance).
+INSTANCE_MEMORY_TOL = 0.10
 
 
 def parse_args():
@@ -45,6 +53,9 @@ def parse_args():
     ap.add_argument("--rays", type=int, default=0, help="rays for candela_bench_rays (default: its own)")
     ap.add_argument("--blender", default=None, help="Blender launcher (default: bin/candela-blender)")
     ap.add_argument("--engines", default="CYCLES,CANDELA", help="engines to run (default CYCLES,CANDELA)")
+    ap.add_argument("--export-triangles", type=int, default=1_000_000, help="triangles of the export-speed mesh")
+    ap.add_argument("--instances", type=int, default=1000, help="instances for the instancing-memory check")
+    ap.add_argument("--no-export", action="store_true", help="skip the export numbers")
     return ap.parse_args()
 
 
@@ -274,6 +285,23 @@ def main():
             print(f"    {s:5d} spp: {res['best_seconds'][str(s)]:.3f} s (best), "
                   f"mean RGB {', '.join(f'{v:.4f}' for v in res['images'][str(s)]['mean_rgb'])}")
 
+    # 2b. Export speed and instancing memory (Candela only, inside Blender).
+    export = None
+    if "CANDELA" in engines and not a.no_export:
+        print(f"[{len(engines) + 2}] export: {a.export_triangles:,} triangles to the native Session; "
+              f"1 vs {a.instances:,} instances")
+        rc, out = run(blender_cmd(launcher, os.path.join(HERE, "export_bench.py"),
+                                  ["--triangles", str(a.export_triangles), "--instances", str(a.instances)]),
+                      os.path.join(outdir, "export.log"))
+        export = find_json(out, "EXPORT_BENCH_JSON ")
+        if rc != 0 or export is None:
+            print("[bench] export benchmark failed:\n" + tail(out))
+            report["errors"].append(f"export benchmark failed (exit {rc})")
+            crashed = True
+            export = None
+        else:
+            report["export"] = export
+
     # 3. Raw Embree rate on a dump of the same scene.
     raw = None
     raw_note = None
@@ -362,6 +390,9 @@ def main():
     print(f"path tracer rays/s          {fmt_rate(pt_rate)}" + (f"  [{pt_method}]" if pt_method else
                                                               "  (the add-on reported no ray count)"))
     print(f"path tracer share of raw    {'n/a' if share is None else f'{share:.1%}'}")
+    if export:
+        for line in export_lines(export, a.instances, report):
+            print(line)
     if report["errors"]:
         print("errors: " + "; ".join(report["errors"]))
     try:
@@ -371,6 +402,35 @@ def main():
     path = write_report(outdir, report)
     print(f"written {shown(path)}")
     return 1 if crashed else 0
+
+
+def export_lines(export, instances, report):
+    """The two export lines of the results, and their numbers in report["results"]."""
+    best = export["export"]["best"]
+    ok_speed = best["total"] < EXPORT_TARGET_S
+    one, many = export["instancing"]["1"], export["instancing"][str(instances)]
+    mem_ratio = many["scene_bytes"] / one["scene_bytes"]
+    arr_ratio = many["array_bytes"] / one["array_bytes"]
+    stored_once = many["unique_triangles"] == one["unique_triangles"]
+    ok_mem = stored_once and mem_ratio <= 1.0 + INSTANCE_MEMORY_TOL
+    per_instance = (many["scene_bytes"] - one["scene_bytes"]) / max(instances - 1, 1)
+    report["results"].update({
+        "export_seconds": best["total"], "export_cpu_seconds": best["total_cpu"],
+        "export_addon_seconds": best["export"], "export_intake_seconds": best["intake"],
+        "export_triangles": best["triangles"], "export_target_seconds": EXPORT_TARGET_S, "export_pass": ok_speed,
+        "instances": instances, "instance_memory_ratio": mem_ratio, "instance_array_ratio": arr_ratio,
+        "instance_bytes_each": per_instance, "instance_mesh_stored_once": stored_once, "instance_pass": ok_mem,
+    })
+    mb = 1024.0 * 1024.0
+    return [
+        f"export {best['triangles']:,} triangles -> native Session  {best['total']:.3f} s wall "
+        f"({best['total_cpu']:.3f} s CPU; add-on {best['export']:.3f} s + intake {best['intake']:.3f} s), "
+        f"target < {EXPORT_TARGET_S:.1f} s   {'PASS' if ok_speed else 'FAIL'}",
+        f"{instances:,} instances of one {one['unique_triangles']:,}-triangle mesh  scene memory "
+        f"{many['scene_bytes'] / mb:.2f} MB = {mem_ratio:.3f}x one instance ({one['scene_bytes'] / mb:.2f} MB; "
+        f"mesh stored {'once' if stored_once else 'MORE THAN ONCE'}, +{per_instance:.0f} B per instance; "
+        f"exported arrays {arr_ratio:.3f}x), target <= {1 + INSTANCE_MEMORY_TOL:.2f}x   {'PASS' if ok_mem else 'FAIL'}",
+    ]
 
 
 def write_report(outdir, report):

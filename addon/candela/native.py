@@ -9,7 +9,7 @@ import importlib
 import sys
 
 # Must equal `_native.ABI_VERSION`; bump both together whenever the array schema or params change incompatibly.
-ABI_VERSION = 3
+ABI_VERSION = 4
 
 module = None   # the loaded candela._native, or None
 error = None    # why it is None

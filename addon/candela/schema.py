@@ -8,7 +8,8 @@ from . import native
 
 MATERIAL_COLUMNS = ("base_r", "base_g", "base_b", "emission_r", "emission_g", "emission_b")
 LIGHT_COLUMNS = ("strength_r", "strength_g", "strength_b", "pos_x", "pos_y", "pos_z", "dir_x", "dir_y", "dir_z",
-                 "u_x", "u_y", "u_z", "v_x", "v_y", "v_z", "radius", "spot_size", "spot_blend", "angle", "shape")
+                 "u_x", "u_y", "u_z", "v_x", "v_y", "v_z", "radius", "spot_size", "spot_blend", "angle", "shape",
+                 "visible_camera")
 MATERIAL_TYPES = {"DIFFUSE": 0}
 CLOSURE_COLUMNS = ("weight_r", "weight_g", "weight_b", "color_r", "color_g", "color_b", "roughness", "anisotropy",
                    "ior", "distribution", "metallic", "specular", "specular_tint", "sheen", "sheen_tint", "clearcoat",

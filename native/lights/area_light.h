@@ -3,7 +3,8 @@
 // `light_pdf = AREA` (the two-argument sample_li/pdf_li): uniform by area, p_ω = d²/(A cos θ_l).
 // `light_pdf = SOLID_ANGLE`: spherical-rectangle sampling (Ureña et al. 2013), p_ω = 1/S, with area sampling
 // for ellipses, non-orthogonal (sheared) edges, S ≤ 1e-4 sr and grazing views; pdf_li(ctx, ...) mirrors it.
-// BSDF rays hit the light analytically and are MIS-weighted.
+// BSDF rays hit the light analytically and are MIS-weighted. Camera rays see it only when `visible_camera`
+// (Blender's Object > Visibility > Camera, off by default for lights in 3.4: Cycles then shows no light).
 // Lights are not occluders: a ray passes through and continues to the next surface.
 #pragma once
 
@@ -22,6 +23,7 @@ struct AreaLight {
     Vec3 normal;     // emitting side
     Color radiance;
     bool ellipse = false;
+    bool visible_camera = false;
     float area = 0.f;
 
     LightSample sample_li(const LightSampleContext& ctx, Vec2 s2) const {

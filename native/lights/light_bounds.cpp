@@ -177,7 +177,9 @@ float light_irradiance_bound(const Light& light, const LightSampleContext& ctx) 
                 if (!(d2 > 0.f)) return std::numeric_limits<float>::max() * 1e-3f;
                 const float d = std::sqrt(d2);
                 const Vec3 axis = to / d;
-                const float att = l.spot.attenuation(-axis);
+                // The spot factor is evaluated per sampled disk point (point_light.h): bound it over the disk.
+                const float spread = l.radius > 0.f ? std::atan(l.radius / d) : 0.f;
+                const float att = l.spot.max_attenuation(-axis, spread);
                 if (!(att > 0.f)) return 0.f;
                 const float I = luminance(l.intensity) * att;
                 if (l.radius <= 0.f) return I * cos_bound(ctx.n, axis, 1.f) / d2;

@@ -17,7 +17,8 @@ const char* light_pdf_mode_name(LightPdfMode mode) { return mode == LightPdfMode
 const std::vector<std::string>& light_columns() {
     static const std::vector<std::string> cols = {
         "strength_r", "strength_g", "strength_b", "pos_x", "pos_y", "pos_z", "dir_x", "dir_y", "dir_z",
-        "u_x", "u_y", "u_z", "v_x", "v_y", "v_z", "radius", "spot_size", "spot_blend", "angle", "shape"};
+        "u_x", "u_y", "u_z", "v_x", "v_y", "v_z", "radius", "spot_size", "spot_blend", "angle", "shape",
+        "visible_camera"};
     return cols;
 }
 
@@ -44,6 +45,7 @@ std::vector<Light> load_blender_lights(const SceneArrays& arrays, const Vec3& of
         const Vec3 u(r[9], r[10], r[11]), v(r[12], r[13], r[14]);
         const float radius = r[15], spot_size = r[16], spot_blend = r[17], angle = r[18];
         const bool ellipse = r[19] > 0.5f;
+        const bool visible_camera = r[20] > 0.5f;
         if (min_component(strength) < 0.f) throw InvalidScene(where + ": negative strength");
         if (is_black(strength)) continue;
         const uint32_t type = types.data<uint32_t>()[i];
@@ -80,6 +82,7 @@ std::vector<Light> load_blender_lights(const SceneArrays& arrays, const Vec3& of
             a.v = v;
             a.normal = dir;
             a.ellipse = ellipse;
+            a.visible_camera = visible_camera;
             a.area = length(u) * length(v) * (ellipse ? k_pi / 4.f : 1.f);
             if (!(a.area > 0.f)) continue;  // a zero-size area light emits nothing
             a.radiance = strength / (4.f * a.area);

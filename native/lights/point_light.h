@@ -1,11 +1,15 @@
 // Blender point and spot lights with Cycles 3.4's units (blender-conventions.md §5):
 //   intensity I = S/(4π) W/sr for power S (colour × energy);
 //   radius r > 0: a disk of radius r facing the shading point with radiance L = S/(4π²r²) — the same
-//   flux, with soft shadows; spot: I(θ) = S/(4π)·cosθ·smoothstep(...) (the extra cosθ is 3.4's).
+//   flux, with soft shadows; spot: I(θ) = S/(4π)·cosθ·smoothstep(...) (the extra cosθ is 3.4's), where θ is
+//   the angle of the direction from the SAMPLED disk point to the shading point (Cycles 3.4
+//   kernel/light/light.h evaluates spot_light_attenuation at −ls->D), which softens the cone's edge by the
+//   disk's angular size; with r = 0 that is the direction from the centre.
 // These lights are sampled by next-event estimation only (they are not hit by BSDF rays), so their
 // contribution carries weight 1 and stays unbiased.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/frame.h"
@@ -22,9 +26,20 @@ struct SpotShape {
     bool cycles34_cosine = false;
 
     /// Cycles 3.4 spot attenuation for a unit direction from the light toward the shaded point.
-    float attenuation(const Vec3& to_point) const {
+    float attenuation(const Vec3& to_point) const { return attenuation_cos(dot(direction, to_point)); }
+
+    /// An upper bound of attenuation(w) over the directions w within angle `spread` of `to_point` (the
+    /// directions from the points of a disk light toward the shaded point): the attenuation is
+    /// non-decreasing in cos(angle to the spot axis), so evaluate it at the axis-most of those directions.
+    float max_attenuation(const Vec3& to_point, float spread) const {
         if (cos_half < -1.f) return 1.f;
-        const float c = dot(direction, to_point);
+        const float theta = std::acos(clamp(dot(direction, to_point), -1.f, 1.f));
+        return attenuation_cos(std::cos(std::max(theta - spread, 0.f)));
+    }
+
+    /// The attenuation as a function of c = cos(angle between the spot axis and the direction).
+    float attenuation_cos(float c) const {
+        if (cos_half < -1.f) return 1.f;
         if (c <= cos_half) return 0.f;
         float f = 1.f;
         if (c - cos_half < smooth) {
@@ -70,8 +85,8 @@ struct PointLight {
         if (s.pdf <= 0.f) return s;
         s.wi = w;
         s.dist = dist;
-        // L = S/(4π·πr²) = I/(πr²); the spot factor depends on the direction from the centre (Cycles).
-        s.Li = intensity * (spot.attenuation(-axis) / area);
+        // L = S/(4π·πr²) = I/(πr²); the spot factor depends on the direction from the sampled point (Cycles).
+        s.Li = intensity * (spot.attenuation(-w) / area);
         s.is_delta = true;  // not hit by BSDF rays: weight 1
         return s;
     }

@@ -22,7 +22,7 @@ using namespace candela;
 
 namespace {
 
-constexpr int k_abi_version = 3;  // 2: closure table; 3: shader programs, textures, UVs
+constexpr int k_abi_version = 4;  // 2: closure table; 3: shader programs, textures, UVs; 4: light column visible_camera, vertex_normals
 
 template <typename T>
 void add_array(SceneArrays& arrays, const std::string& key, ElemType type, const py::handle& value) {
@@ -233,6 +233,9 @@ PYBIND11_MODULE(_native, m) {
                  d["meshes"] = st.scene.meshes;
                  d["instances"] = st.scene.instances;
                  d["emissive_triangles"] = st.scene.emissive_triangles;
+                 d["embree_bytes"] = st.scene.embree_bytes;
+                 d["shading_bytes"] = st.scene.shading_bytes;
+                 d["scene_bytes"] = st.scene.embree_bytes + st.scene.shading_bytes;
                  return d;
              })
         .def("get_pass", &get_pass, py::arg("name"))

@@ -9,6 +9,13 @@ EmbreeDevice::EmbreeDevice(int threads) {
     m_device = rtcNewDevice(config.c_str());
     if (!m_device) throw InternalError("Embree: could not create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
     rtcSetDeviceErrorFunction(m_device, &EmbreeDevice::on_error, this);
+    rtcSetDeviceMemoryMonitorFunction(m_device, &EmbreeDevice::on_memory, this);
+}
+
+bool EmbreeDevice::on_memory(void* self, ssize_t bytes, bool) {
+    // Called from Embree's build threads: allocations positive, releases negative. Never refuses.
+    static_cast<EmbreeDevice*>(self)->m_bytes.fetch_add(bytes, std::memory_order_relaxed);
+    return true;
 }
 
 EmbreeDevice::~EmbreeDevice() {

@@ -4,6 +4,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
+#include <cstdint>
 #include <mutex>
 #include <string>
 
@@ -19,9 +21,13 @@ public:
     RTCDevice get() const { return m_device; }
     /// Throws InternalError (or Cancelled) if Embree reported an error since the last check.
     void check(const char* what);
+    /// Bytes Embree holds for this device now (geometry buffers, BVHs), from its memory monitor.
+    int64_t bytes() const { return m_bytes.load(std::memory_order_relaxed); }
 
 private:
     static void on_error(void* self, RTCError code, const char* message);
+    static bool on_memory(void* self, ssize_t bytes, bool post);
+    std::atomic<int64_t> m_bytes{0};
     RTCDevice m_device = nullptr;
     std::mutex m_mutex;
     RTCError m_code = RTC_ERROR_NONE;

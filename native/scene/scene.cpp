@@ -133,7 +133,8 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     const uint32_t* triangles = arrays.get("triangles").data<uint32_t>();
     const uint32_t* tri_material = arrays.get("tri_material").data<uint32_t>();
     const Array* smooth_arr = arrays.find("tri_smooth");
-    const Array* normals_arr = arrays.find("normals");
+    const Array* normals_arr = arrays.find("normals");           // per corner (takes precedence) ...
+    const Array* vertex_normals_arr = arrays.find("vertex_normals");  // ... or per vertex
     const uint32_t* mesh_start = arrays.get("mesh_tri_start").data<uint32_t>();
     const uint32_t* instance_mesh = arrays.get("instance_mesh").data<uint32_t>();
     const float* instance_xf = arrays.get("instance_transform").data<float>();
@@ -174,16 +175,19 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         if (std::any_of(s.material.begin(), s.material.end(), [&](uint32_t k) { return m_materials[k].inputs >= 0; }))
             s.attributes = MeshAttributes::load(arrays, m, r.tri_begin, r.tri_end);
         bool any_smooth = false;
-        if (smooth_arr && normals_arr) {
+        if (smooth_arr && (normals_arr || vertex_normals_arr)) {
             const uint8_t* sm = smooth_arr->data<uint8_t>() + r.tri_begin;
             s.smooth.assign(sm, sm + n);
             any_smooth = std::any_of(s.smooth.begin(), s.smooth.end(), [](uint8_t v) { return v != 0; });
         }
         if (any_smooth) {
-            const float* nr = normals_arr->data<float>() + 9 * size_t(r.tri_begin);
+            const float* nr = normals_arr ? normals_arr->data<float>() + 9 * size_t(r.tri_begin) : nullptr;
+            const float* vn = vertex_normals_arr ? vertex_normals_arr->data<float>() : nullptr;
+            const uint32_t* corner_vertex = triangles + 3 * size_t(r.tri_begin);
             s.normals.resize(3 * n);
             for (size_t i = 0; i < 3 * n; ++i) {
-                Vec3 v(nr[3 * i], nr[3 * i + 1], nr[3 * i + 2]);
+                const float* c = nr ? nr + 3 * i : vn + 3 * size_t(corner_vertex[i]);
+                Vec3 v(c[0], c[1], c[2]);
                 if (normal_xf) v = normal_xf->vector(v);
                 const float len = length(v);
                 s.normals[i] = len > 0.f ? v / len : Vec3(0.f);
@@ -364,6 +368,12 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     }
     if (m_world_program >= 0) add_environment();
     m_lights.finalize(m_radius);
+
+    for (const MeshShading& s : m_shading)
+        m_stats.shading_bytes += s.material.capacity() * sizeof(uint32_t) + s.smooth.capacity() +
+                                 s.normals.capacity() * sizeof(Vec3) + s.emissive_rank.capacity() * sizeof(int32_t);
+    m_stats.shading_bytes += m_placements.capacity() * sizeof(Placement);
+    m_stats.embree_bytes = size_t(std::max<int64_t>(m_device.bytes(), 0));
 }
 
 uint32_t Scene::pass_index(const SurfaceHit& hit) const { return m_placements[hit.object].pass_index; }
@@ -461,12 +471,15 @@ bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRe
     return r.tfar < 0.f;  // Embree sets tfar = −inf on a hit
 }
 
-bool Scene::intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t) const {
+bool Scene::intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t,
+                                 bool camera_ray) const {
     bool found = false;
     tmax *= 1.f + k_light_margin;
     for (uint32_t i : m_lights.area_lights()) {
         float th;
-        if (std::get<AreaLight>(m_lights[i]).intersect(o, d, tmin, tmax, &th)) {
+        const AreaLight& area = std::get<AreaLight>(m_lights[i]);
+        if (camera_ray && !area.visible_camera) continue;
+        if (area.intersect(o, d, tmin, tmax, &th)) {
             tmax = th;
             *light = i;
             *t = th;

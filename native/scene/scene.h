@@ -29,6 +29,8 @@ struct SceneStats {
     size_t unique_triangles = 0;    // stored once each
     size_t instanced_triangles = 0; // what instancing would have cost flattened
     size_t meshes = 0, instances = 0, emissive_triangles = 0;
+    size_t embree_bytes = 0;        // what Embree holds: vertex/index buffers and BVHs (its memory monitor)
+    size_t shading_bytes = 0;       // Candela's per-triangle shading data and per-instance placements
 };
 
 class Scene {
@@ -52,8 +54,10 @@ public:
                   const PrimitiveRef& skip_to = {}) const;
     /// Closest emitting side of an area light along the ray before tmax·(1 + 1e-4): its index and distance. The
     /// margin mirrors the shadow rays' (they stop at 1 − 1e-4 of the light's distance), so a light lying in a
-    /// surface's plane is seen by camera and BSDF rays exactly when light sampling sees it.
-    bool intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t) const;
+    /// surface's plane is seen by camera and BSDF rays exactly when light sampling sees it. For a camera ray
+    /// (`camera_ray`), lights hidden from the camera (AreaLight::visible_camera false) are skipped.
+    bool intersect_area_light(const Vec3& o, const Vec3& d, float tmin, float tmax, uint32_t* light, float* t,
+                              bool camera_ray = false) const;
 
     /// The material at a hit seen from direction wo (toward the viewer): its BSDF for that side, emission and
     /// shading normal, with textures and normal maps evaluated there (scene/shading.cpp).

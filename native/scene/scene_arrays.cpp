@@ -12,6 +12,7 @@ const std::vector<ArraySpec>& array_schema() {
         {"positions", ElemType::F32, {-1, 3}, true},
         {"triangles", ElemType::U32, {-1, 3}, true},
         {"normals", ElemType::F32, {-1, 3, 3}, false},
+        {"vertex_normals", ElemType::F32, {-1, 3}, false},
         {"tri_smooth", ElemType::U8, {-1}, false},
         {"tri_material", ElemType::U32, {-1}, true},
         {"mesh_tri_start", ElemType::U32, {-1}, true},
@@ -137,6 +138,7 @@ void SceneArrays::validate() const {
     check_finite(get("materials"), "materials", get("materials").shape[1]);
     if (has("lights")) check_finite(get("lights"), "lights", get("lights").shape[1]);
     if (has("normals")) check_finite(get("normals"), "normals", 9);
+    if (has("vertex_normals")) check_finite(get("vertex_normals"), "vertex_normals", 3);
     if (has("world_color")) check_finite(get("world_color"), "world_color", 3);
 
     const uint32_t* tri = get("triangles").data<uint32_t>();
@@ -156,6 +158,9 @@ void SceneArrays::validate() const {
     check_rows("tangents", T);
     if (has("uvs")) check_finite(get("uvs"), "uvs", 6);
     if (has("tangents")) check_finite(get("tangents"), "tangents", 12);
+    if (has("vertex_normals") && rows("vertex_normals") != V)
+        throw InvalidScene("scene array 'vertex_normals' has " + std::to_string(rows("vertex_normals")) +
+                           " rows, expected " + std::to_string(V) + " (one per position)");
     const uint32_t* mat = get("tri_material").data<uint32_t>();
     for (size_t i = 0; i < T; ++i)
         if (mat[i] >= K)

@@ -15,7 +15,7 @@ from candela.params import to_native_params
 SCHEMA = {   # key: (dtype, trailing shape)
     "positions": (np.float32, (3,)),
     "triangles": (np.uint32, (3,)),
-    "normals": (np.float32, (3, 3)),
+    "vertex_normals": (np.float32, (3,)),    # or "normals" (T, 3, 3) with auto smooth / custom normals
     "tri_smooth": (np.uint8, ()),
     "tri_material": (np.uint32, ()),
     "mesh_tri_start": (np.uint32, ()),
@@ -53,7 +53,8 @@ def test_schema_dtypes_and_shapes():
     T, M, I = len(a["triangles"]), len(a["mesh_tri_start"]) - 1, len(a["instance_mesh"])
     assert (T, M, I) == (2 + 12, 2, 2)
     assert a["camera_to_world"].shape == (4, 4) and a["world_color"].shape == (3,)
-    assert a["normals"].shape == (T, 3, 3) and a["tri_smooth"].shape == (T,) and a["tri_material"].shape == (T,)
+    assert a["vertex_normals"].shape == a["positions"].shape
+    assert a["tri_smooth"].shape == (T,) and a["tri_material"].shape == (T,)
     assert a["mesh_tri_start"][0] == 0 and a["mesh_tri_start"][-1] == T
     assert a["triangles"].max() < len(a["positions"])
     assert a["tri_material"].max() < len(a["materials"])
@@ -152,6 +153,9 @@ def test_lights_columns():
     assert np.allclose(ar[[cols["u_x"], cols["u_y"], cols["u_z"]]], (4, 0, 0), atol=1e-6)   # size 2 × scale 2
     assert np.allclose(ar[[cols["v_x"], cols["v_y"], cols["v_z"]]], (0, 0.5, 0), atol=1e-6)
     assert ar[cols["shape"]] == 0
+    assert ar[cols["visible_camera"]] == 0     # Blender 3.4 creates lights hidden from the camera (Cycles agrees)
+    area.visible_camera = True
+    assert export(scene)["lights"][:, cols["visible_camera"]].max() == 1
     su = by_type[types["SUN"]]
     assert np.allclose(su[[cols["dir_x"], cols["dir_y"], cols["dir_z"]]], (0, 1, 0), atol=1e-6)
     assert np.isclose(su[cols["strength_r"]], 3.0) and np.isclose(su[cols["angle"]], 0.1)
@@ -278,3 +282,72 @@ def test_every_sampling_option_reaches_the_native_session():
             session = native.require().Session(arrays, params)   # raises ValueError on an unknown name
             assert not [line for line in session.take_log() if "unknown render parameter" in line], prop
         setattr(settings, prop, settings.bl_rna.properties[prop].default)
+
+
+def _random_mesh(rng, n_faces, ngon=False):
+    """Faces of 3 and 4 corners (planar, concave and folded quads) on random 3-D points; one pentagon if ngon."""
+    verts, faces = [], []
+    for f in range(n_faces):
+        k = 3 if f % 3 == 0 else 4
+        base = len(verts)
+        if k == 4 and f % 3 == 1:      # a planar quad, convex or (dart) concave
+            pts = [(0, 0), (1, 0), (rng.uniform(0.1, 1.2), rng.uniform(0.1, 1.2)), (0, 1)]
+            verts += [(x + 2 * f, y, 0.0) for x, y in pts]
+        else:
+            verts += [tuple(rng.uniform(-1, 1, 3) + (2 * f, 0, 0)) for _ in range(k)]
+        faces.append(tuple(range(base, base + k)))
+    if ngon:
+        base = len(verts)
+        verts += [(math.cos(a), math.sin(a), 5.0) for a in np.linspace(0, 2 * math.pi, 5, endpoint=False)]
+        faces.append(tuple(range(base, base + 5)))
+    me = bpy.data.meshes.new("Random")
+    me.from_pydata(verts, [], faces)
+    me.update()
+    return me
+
+
+@pytest.mark.parametrize("ngon", [False, True])
+def test_triangulation_matches_blenders_loop_triangles(ngon):
+    """The numpy triangulation of tris and quads (export/mesh.py) must give exactly the evaluated mesh's loop
+    triangles — the same diagonals, folded quads included — and n-gon meshes fall back to them."""
+    from candela.export.mesh import read_mesh
+    scene = scenes.empty_scene()
+    rng = np.random.default_rng(7)
+    ob = scenes.link(scene, bpy.data.objects.new("Random", _random_mesh(rng, 600, ngon)))
+    for i, poly in enumerate(ob.data.polygons):
+        poly.use_smooth = i % 2 == 0
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    evaluated = ob.evaluated_get(depsgraph)
+    me = evaluated.data          # what Cycles triangulates (the original mesh may split folded quads otherwise)
+    me.calc_loop_triangles()     # before read_mesh, so that nothing it computes can influence the reference
+    expected = np.array([tuple(t.vertices) for t in me.loop_triangles], np.uint32)
+    smooth = np.array([me.polygons[t.polygon_index].use_smooth for t in me.loop_triangles], np.uint8)
+    data = read_mesh(evaluated)
+    quads = [(tuple(t.vertices), tuple(me.polygons[t.polygon_index].vertices)) for t in me.loop_triangles
+             if len(me.polygons[t.polygon_index].vertices) == 4]
+    flips = sum(set(tv) == {pv[0], pv[1], pv[3]} for tv, pv in quads)
+    assert flips > 50             # the random folded quads do exercise the 1–3 split
+    assert np.array_equal(data.triangles, expected)
+    assert np.array_equal(data.smooth, smooth)
+    # Smooth corners carry Blender's split normals.
+    me.calc_normals_split()
+    split = np.array([[me.loops[l].normal for l in t.loops] for t in me.loop_triangles], np.float32)
+    mask = smooth.astype(bool)
+    assert np.allclose(data.corner_normals()[mask], split[mask], atol=1e-5)
+
+
+def test_auto_smooth_exports_split_normals_per_corner():
+    scene = scenes.tiny_scene()
+    cube = scene.objects["Cube"]
+    for poly in cube.data.polygons:
+        poly.use_smooth = True
+    cube.data.use_auto_smooth = True           # 30°: every cube edge is sharp, so corners get face normals
+    a = export(scene)
+    assert "normals" in a and "vertex_normals" not in a
+    T = len(a["triangles"])
+    assert a["normals"].shape == (T, 3, 3)
+    cube_tris = slice(a["mesh_tri_start"][1], a["mesh_tri_start"][2]) if len(a["mesh_tri_start"]) > 2 else slice(0, T)
+    n = a["normals"][cube_tris]
+    # Face normals: the three corners of each triangle agree and are axis-aligned.
+    assert np.allclose(n[:, 0], n[:, 1], atol=1e-5) and np.allclose(n[:, 0], n[:, 2], atol=1e-5)
+    assert np.allclose(np.abs(n).max(axis=2), 1.0, atol=1e-5)

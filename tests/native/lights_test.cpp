@@ -7,6 +7,7 @@
 #include "core/math.h"
 #include "core/rng.h"
 #include "lights/light.h"
+#include "lights/light_bounds.h"
 #include "scene/scene_arrays.h"
 
 namespace candela {
@@ -20,7 +21,7 @@ SceneArrays light_arrays(uint32_t type, const std::vector<float>& row) {
 }
 
 std::vector<float> row(Color strength, Vec3 pos, Vec3 dir) {
-    std::vector<float> r(20, 0.f);
+    std::vector<float> r(light_columns().size(), 0.f);
     r[0] = strength.x; r[1] = strength.y; r[2] = strength.z;
     r[3] = pos.x; r[4] = pos.y; r[5] = pos.z;
     r[6] = dir.x; r[7] = dir.y; r[8] = dir.z;
@@ -76,6 +77,46 @@ TEST(BlenderLights, SoftSunKeepsItsIrradianceNearTheAxis) {
     const auto [E, se] = irradiance(lights[0], {Vec3(0.f), Vec3(0, 0, 1)});
     // Each sample contributes S·cosθ; over a 0.05 rad disk the mean cosθ is above 0.999.
     EXPECT_NEAR(E, 3.0, 0.004);
+}
+
+TEST(BlenderLights, SpotWithRadiusEvaluatesTheConeFromTheSampledPoint) {
+    // Cycles 3.4 evaluates a spot light's cone at the direction from the sampled disk point to the shading
+    // point (kernel/light/light.h: spot_light_attenuation(…, −ls->D)). Just outside the cone seen from the
+    // centre, part of the disk still lights the point: the exact irradiance is the integral over the disk
+    // (radius a, facing the point) of L·att(w)·cosθ_r·cosθ_l/d², L = I/(πa²), done here on a fine polar grid.
+    // Evaluating the cone from the centre instead gives exactly 0 at this point, so the test can fail.
+    std::vector<float> r = row(Color(1000.f), Vec3(0, 0, 2), Vec3(0, 0, -1));
+    r[15] = 0.3f;                  // radius
+    r[16] = 60.f * k_pi / 180.f;   // spot_size: the cone's edge meets the plane at 2·tan 30° = 1.155 m
+    r[17] = 0.f;                   // blend
+    const auto lights = load_blender_lights(light_arrays(1, r), Vec3(0.f));
+    const auto& spot = std::get<PointLight>(lights[0]);
+    const LightSampleContext ctx{Vec3(1.2f, 0.f, 0.f), Vec3(0, 0, 1)};
+    ASSERT_EQ(spot.spot.attenuation(normalize(ctx.p - spot.position)), 0.f);
+    const Vec3 axis = normalize(ctx.p - spot.position);  // the disk's normal, toward the point
+    const Frame frame(axis);
+    const double I = 1000.0 / (4 * M_PI), a = 0.3;
+    double exact = 0.0;
+    const int nr = 600, nphi = 600;
+    for (int i = 0; i < nr; ++i) {
+        const double rho = a * (i + 0.5) / nr;
+        for (int j = 0; j < nphi; ++j) {
+            const double phi = 2 * M_PI * (j + 0.5) / nphi;
+            const Vec3 q = spot.position + (frame.s * float(rho * std::cos(phi)) + frame.t * float(rho * std::sin(phi)));
+            Vec3 w = ctx.p - q;  // light point → shading point
+            const double d2 = length_squared(w);
+            w = w / float(std::sqrt(d2));
+            const double cos_r = std::max(0.f, -dot(w, ctx.n)), cos_l = std::max(0.f, dot(w, axis));
+            const double dA = rho * (a / nr) * (2 * M_PI / nphi);
+            exact += I / (M_PI * a * a) * spot.spot.attenuation(w) * cos_r * cos_l / d2 * dA;
+        }
+    }
+    const auto [E, se] = irradiance(lights[0], ctx, 400000);
+    std::printf("spot with radius outside the centre's cone: E = %.6f ± %.6f, exact %.6f\n", E, se, exact);
+    EXPECT_GT(exact, 20 * se);               // clearly lit: the centre-only evaluation (0) would fail
+    EXPECT_NEAR(E, exact, 5 * se + 1e-4 * exact);   // 5σ, plus the grid's quadrature error
+    // The WARD selection's bound must stay an upper bound of what the light delivers there.
+    EXPECT_GE(light_irradiance_bound(lights[0], ctx), E);
 }
 
 TEST(BlenderLights, PointLightWithRadiusKeepsItsIntensity) {

@@ -9,6 +9,7 @@
 #include "film/film.h"
 #include "integrators/integrator.h"
 #include "scene/scene.h"
+#include "lights/light.h"
 #include "session/session.h"
 
 namespace candela::test {
@@ -102,11 +103,20 @@ void MeshBuilder::add_instance(uint32_t mesh, const float* rows16) {
 
 void MeshBuilder::add_light(uint32_t type, const std::vector<float>& row) {
     light_type.push_back(type);
-    lights.insert(lights.end(), row.begin(), row.end());
+    // Rows written for the first 20 columns (before `visible_camera`) are padded; the camera then sees an
+    // area light, as these tests were written to expect.
+    std::vector<float> full = row;
+    const size_t columns = light_columns().size();
+    if (full.size() < columns) {
+        full.resize(columns, 0.f);
+        for (size_t c = row.size(); c < columns; ++c)
+            if (light_columns()[c] == "visible_camera") full[c] = 1.f;
+    }
+    lights.insert(lights.end(), full.begin(), full.begin() + columns);
 }
 
 void MeshBuilder::add_point_light(Vec3 pos, Color strength, float radius) {
-    std::vector<float> row(20, 0.f);
+    std::vector<float> row(light_columns().size(), 0.f);
     row[0] = strength.x; row[1] = strength.y; row[2] = strength.z;
     row[3] = pos.x; row[4] = pos.y; row[5] = pos.z;
     row[8] = -1.f;
@@ -139,7 +149,7 @@ SceneArrays MeshBuilder::arrays(const float* camera_rows16) const {
     a.set("materials", ElemType::F32, {material_type.size(), 6}, materials.data());
     if (!light_type.empty()) {
         a.set("light_type", ElemType::U32, {light_type.size()}, light_type.data());
-        a.set("lights", ElemType::F32, {light_type.size(), 20}, lights.data());
+        a.set("lights", ElemType::F32, {light_type.size(), light_columns().size()}, lights.data());
     }
     a.set("camera_to_world", ElemType::F32, {4, 4}, camera_rows16 ? camera_rows16 : identity);
     if (!closure_type.empty()) {

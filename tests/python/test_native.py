@@ -142,3 +142,27 @@ def test_cli_renders_a_dump_to_the_same_image(native, tmp_path):
 def test_cli_reports_bad_dumps(tmp_path):
     proc = subprocess.run([str(BUILD / "bin" / "candela"), str(tmp_path / "missing")], capture_output=True, text=True)
     assert proc.returncode == 1 and "not a directory" in proc.stderr
+
+
+def test_vertex_normals_equal_the_same_normals_per_corner(native):
+    """`vertex_normals` (V, 3) is a compact form of `normals` (T, 3, 3): the same smooth normals give the same
+    image, bit for bit; and normals that differ per vertex do change the image (so the array is used)."""
+    a = box_scene()
+    V, T = len(a["positions"]), len(a["triangles"])
+    rng = np.random.default_rng(3)
+    vn = np.array([0.0, 0.0, 1.0], np.float32) + 0.3 * rng.standard_normal((V, 3)).astype(np.float32)
+    vn /= np.linalg.norm(vn, axis=1, keepdims=True)
+    a["tri_smooth"] = np.ones(T, np.uint8)
+    per_vertex = dict(a, vertex_normals=vn)
+    per_corner = dict(a, normals=vn[a["triangles"]])
+    imgs = [render(native, scene, params()).get_pass("Combined") for scene in (per_vertex, per_corner)]
+    assert np.array_equal(imgs[0], imgs[1])
+    flat = render(native, a, params()).get_pass("Combined")
+    assert not np.array_equal(imgs[0], flat)
+
+
+def test_vertex_normals_need_one_row_per_position(native):
+    a = box_scene()
+    a["vertex_normals"] = np.zeros((len(a["positions"]) - 1, 3), np.float32)
+    with pytest.raises(ValueError, match="vertex_normals"):
+        native.Session(a, params())

@@ -111,7 +111,7 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
         if _hidden_for_render(inst):
             continue
         if ob.type == 'LIGHT':
-            lights.add(ob.data, matrix)
+            lights.add(ob.data, matrix, visible_camera=ob.visible_camera)
         elif inst.show_self:
             geometry.add(ob, matrix, flags=object_flags(inst, view_layer, bits), pass_index=ob.pass_index)
 

@@ -80,7 +80,14 @@ class GeometryTable:
         vertex_counts = np.array([len(d.positions) for d in datas], np.int64)
         tri_counts = np.array([len(d.triangles) for d in datas], np.int64)
         vertex_base = np.concatenate([[0], np.cumsum(vertex_counts)[:-1]]).astype(np.uint32)
-        triangles = np.concatenate([d.triangles + vertex_base[i] for i, d in enumerate(datas)])
+        # One mesh (the common big-mesh case) is handed over without copies.
+        triangles = [d.triangles if vertex_base[i] == 0 else d.triangles + vertex_base[i] for i, d in enumerate(datas)]
+        # Per-vertex normals when every mesh has them (the common case: 12 bytes a vertex instead of 36 a
+        # triangle), else per-corner normals for all.
+        if all(d.normals is None for d in datas):
+            normals = {"vertex_normals": _joined([d.vertex_normals for d in datas], np.float32)}
+        else:
+            normals = {"normals": _joined([d.corner_normals() for d in datas], np.float32)}
         optional = {}
         # Texture attributes only when some textured material reads them; other meshes' rows stay 0.
         if any(d.uvs is not None for d in datas):
@@ -94,14 +101,21 @@ class GeometryTable:
             optional["mesh_texspace"] = np.stack([d.texspace if d.texspace is not None else unit for d in datas])
         return {
             **optional,
-            "positions": np.ascontiguousarray(np.concatenate([d.positions for d in datas]), np.float32),
-            "triangles": np.ascontiguousarray(triangles, np.uint32),
-            "normals": np.ascontiguousarray(np.concatenate([d.normals for d in datas]), np.float32),
-            "tri_smooth": np.concatenate([d.smooth for d in datas]).astype(np.uint8),
-            "tri_material": np.concatenate([m for _, m in self.meshes]).astype(np.uint32),
+            **normals,
+            "positions": _joined([d.positions for d in datas], np.float32),
+            "triangles": _joined(triangles, np.uint32),
+            "tri_smooth": _joined([d.smooth for d in datas], np.uint8),
+            "tri_material": _joined([m for _, m in self.meshes], np.uint32),
             "mesh_tri_start": np.concatenate([[0], np.cumsum(tri_counts)]).astype(np.uint32),
             "instance_mesh": np.array(self.instance_mesh, np.uint32),
             "instance_transform": np.array(self.transforms, np.float32).reshape(-1, 4, 4),
             "instance_flags": np.array(self.flags, np.uint8),
             "instance_pass_index": np.array(self.pass_indices, np.uint32),
         }
+
+
+def _joined(parts, dtype):
+    """The parts concatenated as one C-contiguous array of `dtype` (no copy for a single part of that type)."""
+    if len(parts) == 1:
+        return np.ascontiguousarray(parts[0], dtype)
+    return np.ascontiguousarray(np.concatenate(parts), dtype)

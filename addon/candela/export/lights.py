@@ -26,8 +26,11 @@ def _node_factor(light, warnings):
     return np.array(node.inputs["Color"].default_value[:3]) * node.inputs["Strength"].default_value
 
 
-def light_row(light, matrix, warnings):
-    """(type name, {column: value}) for one light datablock under the world matrix `matrix` ((4, 4) ndarray)."""
+def light_row(light, matrix, warnings, visible_camera=False):
+    """(type name, {column: value}) for one light datablock under the world matrix `matrix` ((4, 4) ndarray).
+
+    `visible_camera` is the object's Visibility > Camera flag (off by default for lights in 3.4, as Cycles
+    honours: camera rays then pass through area lights)."""
     m = np.asarray(matrix, np.float64)
     strength = np.array(light.color[:3]) * light.energy * _node_factor(light, warnings)
     direction = -m[:3, 2]
@@ -37,6 +40,7 @@ def light_row(light, matrix, warnings):
         "strength_r": strength[0], "strength_g": strength[1], "strength_b": strength[2],
         "pos_x": m[0, 3], "pos_y": m[1, 3], "pos_z": m[2, 3],
         "dir_x": direction[0], "dir_y": direction[1], "dir_z": direction[2],
+        "visible_camera": 1.0 if visible_camera else 0.0,
     }
     kind = light.type
     if kind in ("POINT", "SPOT"):
@@ -63,8 +67,8 @@ class LightTable:
         self.columns = schema.light_columns()
         self.type_ids = schema.light_types()
 
-    def add(self, light, matrix):
-        kind, values = light_row(light, matrix, self.warnings)
+    def add(self, light, matrix, visible_camera=False):
+        kind, values = light_row(light, matrix, self.warnings, visible_camera)
         if kind not in self.type_ids:
             self.warnings.add(f"Candela: light '{light.name}' of type {kind} is not supported; skipped")
             return

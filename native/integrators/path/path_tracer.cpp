@@ -106,7 +106,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
         if (!lights.area_lights().empty()) {
             uint32_t li;
             float tl;
-            if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, t_surface, &li, &tl)) {
+            if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, t_surface, &li, &tl, /*camera_ray=*/bounce == 0)) {
                 const auto& area = std::get<AreaLight>(lights[li]);
                 add_emission(area.radiance, light_pdf(li, tl));
             }
