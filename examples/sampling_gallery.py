@@ -12,7 +12,7 @@ reaches a given error; Monte Carlo error² falls as 1/time, so this ratio does n
 
 The error is that of what the picture shows: luminance clipped to the display range [0, 1] (Blender's Standard
 view), so that the directly visible lights of Veach's scene (radiance up to 8000) do not drown the noise of the
-plates; the reference's own noise (from its two independent halves) is subtracted. The time is the faster of two
+plates; the reference's own noise (from its two independent halves) is subtracted. The time is the fastest of three
 identical renders (the machine may be shared).
 
 The renders go through Blender with the add-on (bench/accuracy_render.py, one Blender process per scene); the
@@ -118,11 +118,12 @@ def srgb8(rgba):
     return (srgb * 255 + 0.5).astype(np.uint8)
 
 
-def to_png(rgba, path):
+def to_png(rgba, path, zoom=2):
+    """The picture with each pixel drawn zoom × zoom times (nearest neighbour), so the noise stays visible."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    plt.imsave(path, srgb8(rgba))
+    plt.imsave(path, np.repeat(np.repeat(srgb8(rgba), zoom, axis=0), zoom, axis=1))
 
 
 def veach_triple(images, labels, path):
@@ -131,7 +132,7 @@ def veach_triple(images, labels, path):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, len(images), figsize=(4.0 * len(images), 4.0 * images[0].shape[0] / images[0].shape[1] + 0.5))
     for ax, img, label in zip(axes, images, labels):
-        ax.imshow(img)
+        ax.imshow(img, interpolation="nearest")
         ax.set_title(label, fontsize=11)
         ax.axis("off")
     fig.tight_layout()
@@ -175,8 +176,8 @@ def main():
         mine = [s for s in sections if s["scene"] == scene]
         counts = sorted({s["samples"] for s in mine})
         assert len(counts) == 1, "one sample count per scene (one Blender process renders them all)"
-        # Each variant twice (the same image): the faster time counts.
-        cli = ["--scene", scene, "--engine", "CANDELA", "--counts", f"{counts[0]},{counts[0]}", "--size",
+        # Each variant three times (the same image): the fastest time counts.
+        cli = ["--scene", scene, "--engine", "CANDELA", "--counts", ",".join([str(counts[0])] * 3), "--size",
                str(args.size), "--threads", str(args.threads), "--out", str(renders), "--tag", scene]
         for s in mine:
             for _, tag, settings in variants(s):
@@ -201,7 +202,7 @@ def main():
           "*Error* is the relative RMSE of what the picture shows (luminance clipped to the display range, so "
           "that directly visible lights do not dominate) against a converged reference of the same scene "
           f"({args.ref_samples} samples per pixel, its own noise subtracted); *time* is the render time without "
-          "scene export, the faster of two identical renders; *efficiency* is 1/(error²·time) relative to the "
+          "scene export, the fastest of three identical renders; *efficiency* is 1/(error²·time) relative to the "
           "default setting: 2× means the technique "
           "reaches any given error in half the default's time. Monte Carlo error² falls as 1/time, so the "
           "efficiency does not depend on the sample count (low-discrepancy samplers converge faster than that, "

@@ -196,7 +196,7 @@ def build_glossy(scene):
 
 def build_many_lights(scene):
     """64 small point lights (radius 5 cm) scattered over a 10 m floor with a few blocks, powers spread over two
-    orders of magnitude (log-uniform 3–300 W) and five colours: which light to sample matters."""
+    orders of magnitude (log-uniform 0.5–50 W) and five colours: which light to sample matters."""
     rectangle(scene, "Floor", diffuse("Floor", (0.6, 0.6, 0.6)), Matrix.Diagonal((6, 6, 1, 1)))
     blocks = (((-2.0, 1.0, 0.5), (0.5, 0.5, 0.5), (0.7, 0.3, 0.2)), ((1.5, 2.0, 0.8), (0.4, 0.8, 0.8), (0.3, 0.5, 0.7)),
               ((0.5, -1.5, 0.3), (1.2, 0.3, 0.3), (0.6, 0.6, 0.3)), ((-3.0, -2.0, 1.0), (0.3, 0.3, 1.0), (0.5, 0.5, 0.5)),
@@ -207,7 +207,7 @@ def build_many_lights(scene):
     rng = random.Random(4)
     for i in range(64):
         location = (rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(0.3, 2.5))
-        point_light(scene, f"Lamp{i}", location, 10 ** rng.uniform(0.5, 2.5), palette[i % len(palette)])
+        point_light(scene, f"Lamp{i}", location, 10 ** rng.uniform(-0.3, 1.7), palette[i % len(palette)])
     camera(scene, (0.0, -10.0, 6.5), (58.0, 0.0, 0.0), lens=30.0)
     world(scene, (0.8, 0.9, 1.0), 0.01)
     return 1.0
