@@ -206,8 +206,9 @@ def main():
           "default setting: 2× means the technique "
           "reaches any given error in half the default's time. Monte Carlo error² falls as 1/time, so the "
           "efficiency does not depend on the sample count (low-discrepancy samplers converge faster than that, "
-          "so theirs grows with it). Numbers come from one run at a low sample count and carry a few percent of "
-          "noise themselves; the pictures show the noise a student should learn to recognise.", ""]
+          "so theirs grows with it). The errors come from one image each (about 1 % uncertainty); the times vary by "
+          "10–20 % between runs on a shared machine, and so does the efficiency. The pictures show the noise a "
+          "student should learn to recognise.", ""]
     for s in sections:
         md += [f"## {s['title']}", "", s["text"], "",
                f"Scene `{s['scene']}`, {s['samples']} samples per pixel. "
