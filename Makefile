@@ -8,7 +8,7 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib
 
-.PHONY: all deps build demo test bench microbench accuracy parity fuzz test-sanitize robustness-report install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench accuracy parity sampling-docs fuzz test-sanitize robustness-report install-addon clean test-native test-blender
 
 all: build
 
@@ -50,6 +50,11 @@ accuracy: build
 # `make test` runs a quick mode).
 parity: build
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --build $(BUILD) --docs docs
+
+# docs/sampling.md and docs/sampling/*.png: one picture, error and time per sampling technique (~15 minutes;
+# the scenes' references are cached in build/sampling/cache).
+sampling-docs: build
+	$(CLEAN_ENV) $(PYTHON) examples/sampling_gallery.py --build $(BUILD)
 
 # 20,000 random scenes under every integrator (make test runs 1,000).
 fuzz: build

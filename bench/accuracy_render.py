@@ -5,6 +5,10 @@ counts in ONE Blender process, write an EXR per count and print the times as one
         --scene veach_mis --engine CANDELA --set sampler=SOBOL --counts 1,2,4,8 --size 128 --threads 2 \
         --out DIR --tag NAME
 
+With `--variant TAG:key=value,key=value` (repeatable; Candela only) it renders several settings variants of
+the scene in the same process, each at every count, into TAG_N.exr; each variant starts from the scene's
+settings (and --set), so variants do not leak into each other (examples/sampling_gallery.py uses this).
+
 Times exclude scene set-up, so that they measure the sampling itself:
   Candela: the native render time of each render (session.stats()["render_seconds"]: no export, no BVH build);
   Cycles:  the wall time of each render minus a set-up estimate, 2·t(1) − t(2) from two extra warm-up
@@ -37,7 +41,16 @@ def parse_args():
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--out", required=True)
     ap.add_argument("--tag", required=True)
+    ap.add_argument("--variant", action="append", default=[],
+                    help="TAG:key=value,... a settings variant rendered in this process (repeatable)")
     return ap.parse_args(argv)
+
+
+def parse_variant(text):
+    """'TAG:key=value,key=value' -> (TAG, [(key, value), ...])."""
+    tag, _, rest = text.partition(":")
+    pairs = [kv.split("=", 1) for kv in rest.split(",") if kv]
+    return tag, [(k, parse_value(v)) for k, v in pairs]
 
 
 def parse_value(text):
@@ -81,17 +94,26 @@ def main():
         scene.cycles.seed = a.seed
     os.makedirs(a.out, exist_ok=True)
     counts = [int(c) for c in a.counts.split(",")]
+    variants = [parse_variant(v) for v in a.variant] or [(a.tag, [])]
+    if a.variant and a.engine != "CANDELA":
+        raise SystemExit("--variant is for Candela settings only")
+    baseline = {k: getattr(scene.candela, k) for _, pairs in variants for k, _ in pairs}
     setup = 0.0
     if a.engine == "CYCLES":
         t1 = min(render(scene, a.engine, 1, os.path.join(a.out, f"{a.tag}_warm1.exr"))[0] for _ in range(2))
         t2 = min(render(scene, a.engine, 2, os.path.join(a.out, f"{a.tag}_warm2.exr"))[0] for _ in range(2))
         setup = max(0.0, 2.0 * t1 - t2)
     runs = []
-    for n in counts:
-        path = os.path.join(a.out, f"{a.tag}_{n}.exr")
-        wall, native = render(scene, a.engine, n, path)
-        seconds = native if native is not None else max(wall - setup, 1e-6)
-        runs.append({"samples": n, "seconds": seconds, "wall_seconds": wall, "exr": path})
+    for tag, pairs in variants:
+        for key, value in baseline.items():
+            setattr(scene.candela, key, value)
+        for key, value in pairs:
+            setattr(scene.candela, key, value)
+        for n in counts:
+            path = os.path.join(a.out, f"{tag}_{n}.exr")
+            wall, native = render(scene, a.engine, n, path)
+            seconds = native if native is not None else max(wall - setup, 1e-6)
+            runs.append({"samples": n, "seconds": seconds, "wall_seconds": wall, "exr": path, "variant": tag})
     print("ACCURACY_JSON " + json.dumps({"scene": a.scene, "engine": a.engine, "settings": a.set,
                                          "size": [scene.render.resolution_x, scene.render.resolution_y],
                                          "setup_seconds": setup, "runs": runs}), flush=True)

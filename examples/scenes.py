@@ -5,11 +5,13 @@
 Scenes: "cornell_box" (examples/cornell_box.py), "soft_shadow" (an area light, a blocker and its penumbra),
 "veach_mis" (Veach's four glossy plates under four spheres of equal power and very different sizes,
 verification-cases.md §8.3, converted to Blender's Z-up), "glossy" (glossy and diffuse spheres under an area
-light and a dim sky). Every builder clears the scene and applies the shared render settings of
+light and a dim sky), "many_lights" (64 small point lights of very different powers over blocks on a floor,
+for the light-selection strategies). Every builder clears the scene and applies the shared render settings of
 cornell_box.configure_render / configure_cycles / configure_candela (same bounces, filter and seed).
 """
 
 import math
+import random
 
 import bmesh
 import bpy
@@ -127,6 +129,15 @@ def area_light(scene, name, location, size, power, rotation_deg=(0.0, 0.0, 0.0))
     return ob
 
 
+def point_light(scene, name, location, power, rgb=(1.0, 1.0, 1.0), radius=0.05):
+    light = bpy.data.lights.new(name, 'POINT')
+    light.energy, light.color, light.shadow_soft_size = power, rgb, radius
+    ob = bpy.data.objects.new(name, light)
+    ob.location = location
+    scene.collection.objects.link(ob)
+    return ob
+
+
 # Mitsuba's Y-up world to Blender's Z-up: (x, y, z) -> (x, -z, y).
 Y_UP_TO_Z_UP = Matrix(((1, 0, 0, 0), (0, 0, -1, 0), (0, 1, 0, 0), (0, 0, 0, 1)))
 
@@ -137,7 +148,9 @@ def _mitsuba(rows):
 
 def build_veach_mis(scene):
     """Veach's MIS scene (Bitterli's conversion; verification-cases.md §8.3). Plates: Beckmann α 0.01 / 0.05 /
-    0.1 / 0.25, i.e. Cycles roughness √α; reflectance 0.3 stands in for the conductor's."""
+    0.1 / 0.25, i.e. Cycles roughness √α; reflectance 0.3 stands in for the conductor's. Lights: Veach's four
+    spheres (radii 0.9, 0.3, 0.1, 0.0333 at z = −3.75 … 3.75) with Bitterli's power, L·r² = 7.59909, as in
+    tests/native/veach_mis_test.cpp."""
     plates = {
         "Smooth": ((0.805757, 0.0961775, 0, 0.264069), (-0.673242, 0.115108, 0, 4.09801), (0, 0, 4, 0), 0.01),
         "Glossy": ((0.972057, 0.0567134, 0, 3.06163), (-0.396994, 0.138865, 0, 2.71702), (0, 0, 4, 0), 0.05),
@@ -150,9 +163,9 @@ def build_veach_mis(scene):
     rectangle(scene, "Floor", backdrop, _mitsuba(((9.9, 0, 0, 4.9), (0, -4.32743e-7, 9.9, 0), (0, -23.76, -1.03858e-6, 0))))
     rectangle(scene, "Wall", backdrop, _mitsuba(((-4.32743e-7, -4.32743e-7, 9.9, -5), (-9.9, 1.89158e-14, -4.32743e-7, 9.9),
                                                  (0, -23.76, -1.03858e-6, 0))))
-    for i, (z, radius, L) in enumerate(((-2.8, 1.0, 7.59909), (0.0, 0.5, 30.3964), (2.7, 0.05, 3039.64))):
+    for i, (z, radius) in enumerate(((-3.75, 0.9), (-1.25, 0.3), (1.25, 0.1), (3.75, 0.03333))):
         centre = Y_UP_TO_Z_UP @ Matrix.Translation((0.0, 6.5, z)).to_translation()
-        sphere(scene, f"Light{i}", emission(f"Light{i}", (1, 1, 1), L), centre, radius)
+        sphere(scene, f"Light{i}", emission(f"Light{i}", (1, 1, 1), 7.59909 / radius ** 2), centre, radius)
     # Mitsuba camera at (28.2792, 3.5, 0) looking −x, fov 35° across x.
     camera(scene, (28.2792, 0.0, 3.5), (90.0, 0.0, 90.0), lens=18.0 / math.tan(math.radians(17.5)), fit="HORIZONTAL")
     world(scene, (0, 0, 0), 0.0)
@@ -181,7 +194,27 @@ def build_glossy(scene):
     return 16 / 9
 
 
-BUILDERS = {"soft_shadow": build_soft_shadow, "veach_mis": build_veach_mis, "glossy": build_glossy}
+def build_many_lights(scene):
+    """64 small point lights (radius 5 cm) scattered over a 10 m floor with a few blocks, powers spread over two
+    orders of magnitude (log-uniform 0.5–50 W) and five colours: which light to sample matters."""
+    rectangle(scene, "Floor", diffuse("Floor", (0.6, 0.6, 0.6)), Matrix.Diagonal((6, 6, 1, 1)))
+    blocks = (((-2.0, 1.0, 0.5), (0.5, 0.5, 0.5), (0.7, 0.3, 0.2)), ((1.5, 2.0, 0.8), (0.4, 0.8, 0.8), (0.3, 0.5, 0.7)),
+              ((0.5, -1.5, 0.3), (1.2, 0.3, 0.3), (0.6, 0.6, 0.3)), ((-3.0, -2.0, 1.0), (0.3, 0.3, 1.0), (0.5, 0.5, 0.5)),
+              ((3.2, -0.5, 0.6), (0.6, 0.6, 0.6), (0.4, 0.7, 0.4)))
+    for i, (centre, half, rgb) in enumerate(blocks):
+        cube(scene, f"Block{i}", diffuse(f"Block{i}", rgb), Matrix.Translation(centre) @ Matrix.Diagonal((*half, 1)))
+    palette = ((1.0, 0.9, 0.8), (1.0, 0.6, 0.3), (0.5, 0.7, 1.0), (1.0, 0.4, 0.6), (0.6, 1.0, 0.6))
+    rng = random.Random(4)
+    for i in range(64):
+        location = (rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(0.3, 2.5))
+        point_light(scene, f"Lamp{i}", location, 10 ** rng.uniform(-0.3, 1.7), palette[i % len(palette)])
+    camera(scene, (0.0, -10.0, 6.5), (58.0, 0.0, 0.0), lens=30.0)
+    world(scene, (0.8, 0.9, 1.0), 0.01)
+    return 1.0
+
+
+BUILDERS = {"soft_shadow": build_soft_shadow, "veach_mis": build_veach_mis, "glossy": build_glossy,
+            "many_lights": build_many_lights}
 NAMES = ["cornell_box", *BUILDERS]
 
 

@@ -9,19 +9,19 @@
 // The disk and square are Blender area lights (radiance = power/(4·area)), the triangle and the sphere emissive
 // meshes (emission strength = radiance). The sphere light is a 64 × 32 UV sphere, so its exact value is
 // Lambert's polygon formula summed over the facets that face the receiver (a convex mesh: they tile its
-// silhouette); it is 0.4 % below the smooth sphere's 0.25, which the test also checks.
+// silhouette); it is 0.23 % below the smooth sphere's 0.25, which the test also checks.
 //
 // Each light is rendered with light_sampling LIGHT_ONLY, BSDF_ONLY and MIS and light_pdf AREA and SOLID_ANGLE
 // (BSDF_ONLY does not use the light pdf: once). The point light, which no ray can hit, must be sampled by all
-// three strategies alike. "Per pixel": an orthographic camera with a
-// 0.01-wide view looks at the receiver point from the side (never through a light), so every pixel sees the
-// same point to within 0.01, where the irradiance changes by < 10⁻⁴ (second order: it is smooth there).
+// three strategies alike. "Per pixel": an orthographic camera with a 0.01-wide view looks at the receiver point
+// from the side (never through a light), so every pixel sees the same point to within 0.01, where the
+// irradiance changes by < 10⁻⁴ (second order: it is smooth there).
 //
 // Tolerance: |mean − exact| < 4σ + b, σ the standard error of the image mean from the per-pixel sample
 // variances (an overestimate for QMC samplers, hence conservative), b the geometric bias bound (0 for the
 // flat lights, whose geometry is exact); each render must also be precise enough that 4σ + b < 1 % of the
-// exact value, so passing means "within 1 %" as the issue asks. About 40 renders at 4σ: the chance that a
-// correct renderer fails one is ≈ 40 · 6·10⁻⁵ = 2.5·10⁻³.
+// exact value, so passing means "within 1 %" as the issue asks. 23 renders at 4σ: the chance that a correct
+// renderer fails one is ≈ 23 · 6·10⁻⁵ = 1.5·10⁻³.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -190,6 +190,35 @@ TEST(AnalyticLights, DISABLED_SphereLightOverDiffuseReceiver) {
     c.light_sigma = 1.5;
     c.mis_sigma = 1.2;
     run_all(c);
+}
+
+// The sphere light to 0.1 %: light sampling of every facet (ALL) with independent samples; summing 4032 facets
+// per path leaves σ ≈ 10⁻⁵, so the tolerance is 4σ plus 0.1 % for the float evaluation of the exact value, the
+// pixels' 0.01 footprint and the shadow rays' 10⁻⁴ shortening (measured residual with the fix below: −0.02 %).
+// DISABLED: it finds a bug in path_tracer.cpp (reported to the lead). Shadow rays start at the offset origin but
+// keep the direction computed from the shading point itself, and the sampled triangle is not skipped, so toward
+// a point seen at grazing incidence on the emitter (the sphere's rim facets) the shifted ray meets the emitter's
+// plane before tmax = 0.9999·d and the sample is lost: 0.248527 instead of 0.249436 (−0.37 %), while BSDF_ONLY
+// agrees. Aiming the shadow ray from the offset origin at the sampled point gives 0.249382. Enable it with that
+// fix.
+TEST(AnalyticLights, DISABLED_SphereLightLightSamplingToATenthOfAPercent) {
+    Case c = receiver_case("sphere (precise)");
+    const uint32_t lamp = c.builder.add_material(Color(0.f), Color(1.f));
+    MeshBuilder sphere;
+    sphere.add_sphere(1.f, 64, 32, 0);
+    const float at[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 2, 0, 0, 0, 1};
+    c.builder.add_instance(c.builder.add_sphere(1.f, 64, 32, lamp), at);
+    c.exact = convex_mesh_irradiance(sphere, Vec3(0.f, 0.f, 2.f), Vec3(0.f, 0.f, 2.f), Vec3(0.f), Vec3(0.f, 0.f, 1.f)) /
+              k_pi;
+    const PreparedScene scene(c.builder.arrays(c.camera.data()), c.base);
+    Params p;
+    p.set("light_sampling", std::string("LIGHT_ONLY"));
+    p.set("light_selection", std::string("ALL"));
+    p.set("sampler", std::string("RANDOM"));  // independent samples: σ from the sample variance is exact
+    p.set("samples", int64_t(128));
+    const RenderResult r = scene.render(p);
+    EXPECT_LT(4.0 * r.standard_error, 0.001 * c.exact);
+    EXPECT_NEAR(r.mean_rgb, c.exact, 4.0 * r.standard_error + 0.001 * c.exact) << "σ " << r.standard_error;
 }
 
 TEST(AnalyticLights, OffCentrePointLightInDiffuseSphere) {
