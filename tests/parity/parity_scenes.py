@@ -170,6 +170,16 @@ def build_cornell_emissive_quad(scene, size=128, **_):
     return 1.0
 
 
+def build_cornell_quad_near_ceiling(scene, size=128, **_):
+    """The Cornell box with its emissive quad 10 mm below the ceiling instead of 0.5 mm: light fixtures close to
+    a ceiling. Both faces of a mesh emitter emit, so the back face lights the ceiling above it and some of that
+    light leaves the gap; the shading points there are 10 mm from the emitter, which makes shadow rays toward it
+    sensitive to how they avoid hitting the emitter itself."""
+    cb.build_cornell_box(scene, size=size, engine="CYCLES")
+    scene.objects["Light"].location.z -= 0.0095
+    return 1.0
+
+
 def build_principled_spheres(scene, **_):
     """A row of Principled spheres (dielectric, metal, rough glass, clearcoat) on a grey floor, under an area
     light and a dim sky."""
@@ -241,6 +251,7 @@ SCENES.update({
     "emissive_quad": build_emissive_quad_over_plane,
     "cornell_area_light": build_cornell_area_light,
     "cornell_emissive_quad": build_cornell_emissive_quad,
+    "cornell_quad_near_ceiling": build_cornell_quad_near_ceiling,
     "principled_spheres": build_principled_spheres,
     "environment": build_environment,
 })

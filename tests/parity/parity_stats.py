@@ -21,7 +21,7 @@ Check (per region — the whole image, or one of GRID × GRID blocks — and per
           (Welch–Satterthwaite: ν_eff = (Σ v_p)² / Σ v_p², every per-pixel estimate v_p having one degree of
           freedom) at level ALPHA = 5·10⁻⁵. A check fails falsely with probability ≤ ALPHA when the true
           difference sits exactly at the tolerance REL·μ (the worst case allowed); with about 700 checks in a
-          full run (13 scenes × 17 regions × 3 channels) the chance of one false failure is then < 4 %, and for
+          full run (14 scenes × 17 regions × 3 channels) the chance of one false failure is then < 4 %, and for
           engines that truly agree (difference ≪ tolerance) it is negligible. Noise therefore widens the
           tolerance only as far as the measured noise justifies: at high sample counts t·σ_d is small against
           REL·μ, and in the quick mode (small images, few samples) it is wider — by the measured noise, not by

@@ -166,3 +166,35 @@ def test_vertex_normals_need_one_row_per_position(native):
     a["vertex_normals"] = np.zeros((len(a["positions"]) - 1, 3), np.float32)
     with pytest.raises(ValueError, match="vertex_normals"):
         native.Session(a, params())
+
+
+def test_a_thousand_instances_cost_one_meshs_memory(native):
+    """A mesh drawn by 1,000 instances is stored once (Embree instancing): the scene's memory (Embree's buffers
+    and BVHs from its memory monitor, plus Candela's shading data) grows by a per-instance record only, far
+    below a second copy of the mesh."""
+    n = 64                                              # an n × n grid: 2n² = 8,192 triangles
+    xs = np.linspace(-1, 1, n + 1, dtype=np.float32)
+    gx, gy = np.meshgrid(xs, xs)
+    pos = np.stack([gx, gy, np.zeros_like(gx)], -1).reshape(-1, 3)
+    i, j = np.meshgrid(np.arange(n), np.arange(n))
+    v0 = (j * (n + 1) + i).ravel()
+    tri = np.concatenate([np.stack([v0, v0 + 1, v0 + n + 2], -1), np.stack([v0, v0 + n + 2, v0 + n + 1], -1)])
+    T = len(tri)
+
+    def scene_bytes(count):
+        a = box_scene()
+        xf = np.tile(np.eye(4, dtype=np.float32), (count, 1, 1))
+        xf[:, 0, 3] = np.arange(count, dtype=np.float32) * 3.0
+        xf[:, 2, 3] = -4.0
+        a.update(positions=pos, triangles=tri.astype(np.uint32), tri_material=np.zeros(T, np.uint32),
+                 mesh_tri_start=np.array([0, T], np.uint32), instance_mesh=np.zeros(count, np.uint32),
+                 instance_transform=xf)
+        st = render(native, a, params(width=4, height=4, samples=1)).stats()
+        assert st["unique_triangles"] == T and st["instanced_triangles"] == count * T
+        return st["scene_bytes"]
+
+    one, many = scene_bytes(1), scene_bytes(1000)
+    # A second copy of the mesh would add at least its vertex and index buffers (12 + 12 bytes per triangle
+    # here) and its BVH; 1,000 instances may add up to 256 bytes each (transform, Embree instance, record).
+    assert one > 24 * T
+    assert many - one < 1000 * 256 < one
