@@ -7,6 +7,7 @@
 #include "core/math.h"
 #include "integrators/camera_hit.h"
 #include "integrators/ray_types.h"
+#include "integrators/shadow_ray.h"
 #include "sampling/warp.h"
 #include "scene/ray_offset.h"
 
@@ -169,10 +170,8 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, Path
             if (cos_g == 0.f || (cos_g > 0.f) != (wi_local.z > 0.f)) return 0.0;
             const Color f = bsdf.f(wo_local, wi_local) * std::fabs(wi_local.z);
             if (is_black(f)) return 0.0;
-            const Vec3 origin = offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng);
-            const float tmax = std::isfinite(ls.dist) ? ls.dist * (1.f - 1e-4f) : k_inf;
             ++stats.rays;
-            if (m_scene.occluded(origin, ls.wi, tmax, hit.primitive)) return 0.0;
+            if (shadow_ray_blocked(m_scene, hit, cos_g > 0.f ? ng : -ng, ls)) return 0.0;
             const float density = float(k) * pmf * ls.pdf;
             float w = 1.f;
             if (!ls.is_delta && cfg.light_sampling == LightSampling::Mis)
