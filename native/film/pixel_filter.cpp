@@ -15,7 +15,8 @@ const std::vector<std::string>& PixelFilter::names() {
 }
 
 PixelFilter::PixelFilter(const std::string& name, float width)
-    : m_name(name), m_width(width), m_support(width * (name == "GAUSSIAN" ? 3.f : name == "BLACKMAN_HARRIS" ? 2.f : 1.f)) {
+    : m_kind(name == "GAUSSIAN" ? Kind::Gaussian : name == "BLACKMAN_HARRIS" ? Kind::BlackmanHarris : Kind::Box),
+      m_width(width), m_support(width * (name == "GAUSSIAN" ? 3.f : name == "BLACKMAN_HARRIS" ? 2.f : 1.f)) {
     bool known = false;
     for (const auto& n : names()) known |= n == name;
     if (!known) throw InvalidParameter("unknown pixel_filter '" + name + "' (BOX, GAUSSIAN, BLACKMAN_HARRIS)");
@@ -42,8 +43,8 @@ float PixelFilter::sample_1d(float u) const {
 float PixelFilter::evaluate(float x) const {
     const float half = 0.5f * m_support;
     if (std::fabs(x) > half) return 0.f;
-    if (m_name == "BOX") return 1.f;
-    if (m_name == "GAUSSIAN") {
+    if (m_kind == Kind::Box) return 1.f;
+    if (m_kind == Kind::Gaussian) {
         // Cycles: exp(−2 v²) with v = x·6/support: σ = support/12 = width/4.
         const float v = x * 6.f / m_support;
         return std::exp(-2.f * v * v);
@@ -54,7 +55,7 @@ float PixelFilter::evaluate(float x) const {
 }
 
 Vec2 PixelFilter::sample(Vec2 u) const {
-    if (m_name == "BOX") return {(u.x - 0.5f) * m_support, (u.y - 0.5f) * m_support};
+    if (m_kind == Kind::Box) return {(u.x - 0.5f) * m_support, (u.y - 0.5f) * m_support};
     return {sample_1d(u.x), sample_1d(u.y)};
 }
 

@@ -30,7 +30,8 @@ public:
     static const std::vector<std::string>& names();
 
 private:
-    std::string m_name;
+    enum class Kind { Box, Gaussian, BlackmanHarris };
+    Kind m_kind;  // the name, resolved once: sample() runs per camera ray
     float m_width;
     float m_support;
     /// Inverse CDF of the profile over [−width/2, width/2] at k_inverse_size + 1 evenly spaced u, so a

@@ -49,15 +49,6 @@ void union_cones(const Vec3& wa, float cos_a, const Vec3& wb, float cos_b, Vec3*
     *cos_out = std::cos(to);
 }
 
-/// Cosine of the half-angle of a cone around the directions from p to `b` (bounding sphere); −1 if p is in it.
-float cos_subtended(const Bounds3& b, const Vec3& p) {
-    const Vec3 c = b.centroid();
-    const float r2 = 0.25f * length_squared(b.diagonal());
-    const float d2 = length_squared(p - c);
-    if (d2 <= r2 * (1.f + 1e-5f)) return -1.f;
-    return safe_sqrt(1.f - r2 / d2);
-}
-
 /// |cos| bound of n against any direction in the cone (axis, cos_half): cos(max(0, θ_n − θ_half)).
 float cos_bound(const Vec3& n, const Vec3& axis, float cos_half) {
     if (is_black(n)) return 1.f;
@@ -89,27 +80,46 @@ float polygon_bound(const Vec3* v, int count, const LightSampleContext& ctx) {
 
 }  // namespace
 
-float LightBounds::importance(const Vec3& p, const Vec3& n) const {
+float LightBounds::importance(const Vec3& p, const Vec3& n) const { return LightImportance(*this)(p, n); }
+
+LightImportance::LightImportance(const LightBounds& b)
+    : centre(b.bounds.centroid()), w(b.w), cos_o(b.cos_theta_o), cos_e(b.cos_theta_e), phi(b.phi),
+      two_sided(b.two_sided) {
+    radius2 = 0.25f * length_squared(b.bounds.diagonal());
+    radius = std::sqrt(radius2);
+    // pbrt-v4's clamp of d² at |diagonal|/2 (a length, not its square): keeps a point inside a cluster from
+    // starving the sibling without flattening large clusters as a squared clamp does.
+    d2_min = std::max(radius, 1e-12f);
+    sin_o = safe_sqrt(1.f - cos_o * cos_o);
+}
+
+float LightImportance::operator()(const Vec3& p, const Vec3& n) const {
     if (!(phi > 0.f)) return 0.f;
-    const Vec3 pc = bounds.centroid();
-    float d2 = length_squared(p - pc);
-    // pbrt-v4's clamp (|diagonal|/2, not its square): keeps a point inside a cluster from starving the sibling
-    // without flattening large clusters as a squared clamp does.
-    d2 = std::max(d2, std::max(0.5f * length(bounds.diagonal()), 1e-12f));
+    const Vec3 to_p = p - centre;
+    const float d2_raw = length_squared(to_p);
+    const float lp = std::sqrt(d2_raw);
+    const float d2 = std::max(d2_raw, d2_min);
     // θ_w: angle between the cone axis and the direction light → p; two-sided emitters fold it.
-    Vec3 to_p = p - pc;
-    const float lp = length(to_p);
     float cos_w = lp > 0.f ? dot(w, to_p) / lp : 1.f;
     if (two_sided) cos_w = std::fabs(cos_w);
-    const float cos_b = cos_subtended(bounds, p);
-    // θ′ = max(0, θ_w − θ_o − θ_b)
-    const float cos_x = cos_sub_clamped(clamp(cos_w, -1.f, 1.f), cos_theta_o);
-    const float cos_p = cos_sub_clamped(cos_x, cos_b);
-    if (cos_p <= cos_theta_e) return 0.f;
+    cos_w = clamp(cos_w, -1.f, 1.f);
+    // θ_b: half-angle of the bounding sphere seen from p (p inside: every direction, θ′ = 0 below).
+    const bool inside = d2_raw <= radius2 * (1.f + 1e-5f);
+    const float sin_b = inside ? 0.f : radius / lp, cos_b = inside ? -1.f : safe_sqrt(1.f - sin_b * sin_b);
+    // θ′ = max(0, θ_w − θ_o − θ_b), through θ_x = max(0, θ_w − θ_o): cos and sin of differences of angles in [0, π].
+    float cos_x = 1.f, sin_x = 0.f;
+    if (cos_w < cos_o) {
+        const float sin_w = safe_sqrt(1.f - cos_w * cos_w);
+        cos_x = clamp(cos_w * cos_o + sin_w * sin_o, -1.f, 1.f);
+        sin_x = std::max(sin_w * cos_o - cos_w * sin_o, 0.f);
+    }
+    const float cos_p = cos_x >= cos_b ? 1.f : clamp(cos_x * cos_b + sin_x * sin_b, -1.f, 1.f);
+    if (cos_p <= cos_e) return 0.f;
     float imp = phi * cos_p / d2;
     if (!is_black(n) && lp > 0.f) {
-        const float cos_i = std::fabs(dot(n, to_p)) / (lp * length(n));
-        imp *= cos_sub_clamped(clamp(cos_i, 0.f, 1.f), cos_b);
+        // θ_i′ = max(0, θ_i − θ_b): the receiver's cosine bound.
+        const float cos_i = clamp(std::fabs(dot(n, to_p)) / (lp * length(n)), 0.f, 1.f);
+        if (cos_i < cos_b) imp *= clamp(cos_i * cos_b + safe_sqrt(1.f - cos_i * cos_i) * sin_b, -1.f, 1.f);
     }
     return std::isfinite(imp) ? imp : std::numeric_limits<float>::max() * 1e-3f;
 }

@@ -107,6 +107,7 @@ uint32_t TreeLightSampler::build(std::vector<std::pair<uint32_t, LightBounds>>& 
         leaf.leaf = true;
         leaf.index = items[begin].first;
         leaf.lb = items[begin].second;
+        leaf.importance = LightImportance(leaf.lb);
         m_leaf_of_light[leaf.index] = node_index;
         return node_index;
     }
@@ -168,14 +169,15 @@ uint32_t TreeLightSampler::build(std::vector<std::pair<uint32_t, LightBounds>>& 
     Node& node = m_nodes[node_index];
     node.index = second;
     node.lb = union_bounds(m_nodes[node_index + 1].lb, m_nodes[second].lb);
+    node.importance = LightImportance(node.lb);
     return node_index;
 }
 
 void TreeLightSampler::child_importances(uint32_t node, const LightSampleContext& ctx, float* c0, float* c1) const {
     const Node& a = m_nodes[node + 1];
     const Node& b = m_nodes[m_nodes[node].index];
-    *c0 = a.lb.importance(ctx.p, ctx.n);
-    *c1 = b.lb.importance(ctx.p, ctx.n);
+    *c0 = a.importance(ctx.p, ctx.n);
+    *c1 = b.importance(ctx.p, ctx.n);
     if (!(*c0 + *c1 > 0.f)) {
         // The parent's looser bounds admitted the point but neither child's does: no light below can contribute.
         // Split ∝ flux so that the pmf still sums to one (those lights' samples will carry no radiance).

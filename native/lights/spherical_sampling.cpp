@@ -64,17 +64,19 @@ SphericalSample sample_spherical_triangle(const Vec3& p, const Vec3& v0, const V
     // Normals of the great circles through the edges; a zero cross product is a degenerate triangle.
     D3 n_ab = crossd(a, b), n_bc = crossd(b, c), n_ca = crossd(c, a);
     if (!normalize_d(&n_ab) || !normalize_d(&n_bc) || !normalize_d(&n_ca)) return out;
-    // Vertex angles (the angle at a vertex is the dihedral angle between its two edge planes).
-    const double alpha = angle_between(n_ab, n_ca * -1.0);
-    const double beta = angle_between(n_bc, n_ab * -1.0);
-    const double gamma = angle_between(n_ca, n_bc * -1.0);
-    const double area = alpha + beta + gamma - k_pi_d;  // Girard
-    if (!(area > 0.0)) return out;
+    // The vertex angle α at a is the dihedral angle between its edge planes: its cosine and sine come from the
+    // planes' unit normals directly (sin α = |n_ab × −n_ca| ≥ 0 as α ∈ [0, π]); no trigonometric call is needed.
+    const D3 m_ca = n_ca * -1.0;
+    const double cos_alpha = clamp_d(dotd(n_ab, m_ca), -1.0, 1.0);
+    const double sin_alpha = lend(crossd(n_ab, m_ca));
 
-    // Arvo: choose the sub-triangle (a, b, c′) of area u₀·Ω, then a point on the arc b–c′.
-    const double a_hat = double(u.x) * area;
-    const double s = std::sin(a_hat - alpha), t = std::cos(a_hat - alpha);
-    const double cos_alpha = std::cos(alpha), sin_alpha = std::sin(alpha);
+    // Arvo: choose the sub-triangle (a, b, c′) of area u₀·Ω, then a point on the arc b–c′. Ω is the
+    // Van Oosterom–Strackee solid angle (what the pdf uses), equal to Girard's excess α + β + γ − π and more
+    // accurate than it for small triangles.
+    const double a_hat = double(u.x) * omega;
+    const double sin_a_hat = std::sin(a_hat), cos_a_hat = std::cos(a_hat);
+    const double s = sin_a_hat * cos_alpha - cos_a_hat * sin_alpha;  // sin(Â − α)
+    const double t = cos_a_hat * cos_alpha + sin_a_hat * sin_alpha;  // cos(Â − α)
     const double uu = t - cos_alpha;
     const double vv = s + sin_alpha * dotd(a, b);  // cos c = a·b (the arc opposite c)
     const double den = (vv * s + uu * t) * sin_alpha;
