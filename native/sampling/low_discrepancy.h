@@ -83,24 +83,34 @@ inline uint32_t sobol_dim1_reversed(uint32_t i) {
     return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
 }
 
-/// A bijection of 32-bit words in which output bit k equals input bit k XOR a seeded hash of the input
-/// bits below k (so it is an Owen scramble of the bit-reversed word).
-inline uint32_t owen_lsb_hash(uint32_t x, uint64_t seed) {
-    // Every step is triangular: bit k changes only through bits < k (adding, multiplying by an odd
-    // number, xoring in a multiple by an even number). One mix of the seed gives 64 random bits; the
-    // seed-dependent constants are that word and two odd-multiplied rotations of it (cheap, and as
-    // random as the word itself for scrambling purposes).
+/// The seed-dependent constants of owen_lsb_hash: one mix of the seed gives 64 random bits, and the constants
+/// are that word and two odd-multiplied rotations of it (cheap, and as random as the word itself for
+/// scrambling purposes). Separate so that a caller scrambling many values with one seed derives them once.
+struct OwenKey {
+    uint32_t add0, xmul0, mul1, add1, xmul2, mul2;
+};
+inline OwenKey owen_key(uint64_t seed) {
     const uint64_t h0 = mix64(seed ^ 0x6a09e667f3bcc909ULL);
     const uint64_t h1 = rotl64(h0 * 0xbb67ae8584caa73bULL, 29), h2 = rotl64(h0 * 0x3c6ef372fe94f82bULL, 43);
-    x += uint32_t(h0);
-    x ^= x * (uint32_t(h0 >> 32) << 1);
-    x *= uint32_t(h1) | 1u;
-    x += uint32_t(h1 >> 32);
-    x ^= x * (uint32_t(h2) << 1);
-    x *= uint32_t(h2 >> 32) | 1u;
+    return {uint32_t(h0), uint32_t(h0 >> 32) << 1, uint32_t(h1) | 1u, uint32_t(h1 >> 32), uint32_t(h2) << 1,
+            uint32_t(h2 >> 32) | 1u};
+}
+
+/// A bijection of 32-bit words in which output bit k equals input bit k XOR a seeded hash of the input
+/// bits below k (so it is an Owen scramble of the bit-reversed word).
+inline uint32_t owen_lsb_hash(uint32_t x, const OwenKey& k) {
+    // Every step is triangular: bit k changes only through bits < k (adding, multiplying by an odd
+    // number, xoring in a multiple by an even number).
+    x += k.add0;
+    x ^= x * k.xmul0;
+    x *= k.mul1;
+    x += k.add1;
+    x ^= x * k.xmul2;
+    x *= k.mul2;
     x ^= x * (0x2c1b3c6du << 1);
     return x;
 }
+inline uint32_t owen_lsb_hash(uint32_t x, uint64_t seed) { return owen_lsb_hash(x, owen_key(seed)); }
 
 /// Base-2 Owen scrambling of a 32-bit word: bit k (from the most significant) is flipped by a hash of the
 /// bits above it. Applied to a fixed-point fraction it is a nested uniform scramble (each scrambled value

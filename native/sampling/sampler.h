@@ -26,6 +26,7 @@
 // falls back to independent values for the samplers that need N. All values are in [0, 1).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <variant>
@@ -151,12 +152,33 @@ public:
     void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
         SamplerBase::start_pixel_sample(px, py, sample_index);
         m_reversed_index = reverse_bits32(sample_index);
+        if (m_pixel_key != m_cached_pixel_key) {  // a new pixel: invalidate every cached key
+            m_cached_pixel_key = m_pixel_key;
+            if (++m_stamp == 0) {  // the stamp wrapped: clear the stamps for real
+                m_key_stamp.fill(0);
+                m_stamp = 1;
+            }
+        }
     }
     float sample_1d(uint32_t dim) const;
     Vec2 sample_2d(uint32_t dim) const;
 
 private:
+    /// The scramble keys of dimension dim (index shuffle, first and second coordinate), derived once per pixel:
+    /// a pixel's samples are drawn in runs (a pass draws up to 16 per pixel), and every sample of a pixel uses
+    /// the same keys. Dimensions beyond the cache derive them on every call.
+    struct DimKeys {
+        OwenKey shuffle, first, second;
+    };
+    static constexpr uint32_t k_cached_dims = 128;
+    const DimKeys& keys(uint32_t dim, DimKeys* scratch) const;
+
     uint32_t m_reversed_index = 0;  // the scrambles work on bit-reversed words: reverse the index once
+    // Cache (per sampler object, which one thread owns): entry d is valid when m_key_stamp[d] == m_stamp.
+    uint64_t m_cached_pixel_key = 0;
+    uint32_t m_stamp = 1;
+    mutable std::array<uint32_t, k_cached_dims> m_key_stamp{};
+    mutable std::array<DimKeys, k_cached_dims> m_keys{};
 };
 
 using Sampler = std::variant<IndependentSampler, StratifiedSampler, NRooksSampler, HaltonSampler, HammersleySampler,
