@@ -94,36 +94,6 @@ float HammersleySampler::sample_1d(uint32_t dim) const {
 
 // ---- SOBOL (Burley 2020: shuffled, Owen-scrambled (0,2)-sequence per request) ----
 
-// In the bit-reversed domain the scrambles are owen_lsb_hash, and sobol_dim0 is the reversal itself, so
-//   shuffled index  i = reverse(lsb_hash(reverse(index), k1)),
-//   x = owen_scramble(sobol_dim0(i), k2) = reverse(lsb_hash(i, k2)),
-//   y = owen_scramble(sobol_dim1(i), k3) = reverse(lsb_hash(sobol_dim1_reversed(i), k3)):
-// the same values as the textbook composition with three bit reversals instead of seven.
-const SobolSampler::DimKeys& SobolSampler::keys(uint32_t dim, DimKeys* scratch) const {
-    DimKeys* k = scratch;
-    if (dim < k_cached_dims) {
-        k = &m_keys[dim];
-        if (m_key_stamp[dim] == m_stamp) return *k;
-        m_key_stamp[dim] = m_stamp;
-    }
-    *k = {owen_key(dim_key(dim, 1)), owen_key(dim_key(dim, 2)), owen_key(dim_key(dim, 3))};
-    return *k;
-}
-
-float SobolSampler::sample_1d(uint32_t dim) const {
-    DimKeys scratch;
-    const DimKeys& k = keys(dim, &scratch);
-    const uint32_t i = reverse_bits32(owen_lsb_hash(m_reversed_index, k.shuffle));
-    return fixed_to_float(reverse_bits32(owen_lsb_hash(i, k.first)));
-}
-
-Vec2 SobolSampler::sample_2d(uint32_t dim) const {
-    DimKeys scratch;
-    const DimKeys& k = keys(dim, &scratch);
-    const uint32_t i = reverse_bits32(owen_lsb_hash(m_reversed_index, k.shuffle));
-    return {fixed_to_float(reverse_bits32(owen_lsb_hash(i, k.first))),
-            fixed_to_float(reverse_bits32(owen_lsb_hash(sobol_dim1_reversed(i), k.second)))};
-}
 
 // ---- registry ----
 

@@ -160,8 +160,24 @@ public:
             }
         }
     }
-    float sample_1d(uint32_t dim) const;
-    Vec2 sample_2d(uint32_t dim) const;
+    // In the bit-reversed domain the scrambles are owen_lsb_hash, and sobol_dim0 is the reversal itself, so
+    //   shuffled index  i = reverse(lsb_hash(reverse(index), k1)),
+    //   x = owen_scramble(sobol_dim0(i), k2) = reverse(lsb_hash(i, k2)),
+    //   y = owen_scramble(sobol_dim1(i), k3) = reverse(lsb_hash(sobol_dim1_reversed(i), k3)):
+    // the same values as the textbook composition with three bit reversals instead of seven.
+    float sample_1d(uint32_t dim) const {
+        DimKeys scratch;
+        const DimKeys& k = keys(dim, &scratch);
+        const uint32_t i = reverse_bits32(owen_lsb_hash(m_reversed_index, k.shuffle));
+        return fixed_to_float(reverse_bits32(owen_lsb_hash(i, k.first)));
+    }
+    Vec2 sample_2d(uint32_t dim) const {
+        DimKeys scratch;
+        const DimKeys& k = keys(dim, &scratch);
+        const uint32_t i = reverse_bits32(owen_lsb_hash(m_reversed_index, k.shuffle));
+        return {fixed_to_float(reverse_bits32(owen_lsb_hash(i, k.first))),
+                fixed_to_float(reverse_bits32(owen_lsb_hash(sobol_dim1_reversed(i), k.second)))};
+    }
 
 private:
     /// The scramble keys of dimension dim (index shuffle, first and second coordinate), derived once per pixel:
@@ -171,7 +187,16 @@ private:
         OwenKey shuffle, first, second;
     };
     static constexpr uint32_t k_cached_dims = 128;
-    const DimKeys& keys(uint32_t dim, DimKeys* scratch) const;
+    const DimKeys& keys(uint32_t dim, DimKeys* scratch) const {
+        DimKeys* k = scratch;
+        if (dim < k_cached_dims) {
+            k = &m_keys[dim];
+            if (m_key_stamp[dim] == m_stamp) return *k;
+            m_key_stamp[dim] = m_stamp;
+        }
+        *k = {owen_key(dim_key(dim, 1)), owen_key(dim_key(dim, 2)), owen_key(dim_key(dim, 3))};
+        return *k;
+    }
 
     uint32_t m_reversed_index = 0;  // the scrambles work on bit-reversed words: reverse the index once
     // Cache (per sampler object, which one thread owns): entry d is valid when m_key_stamp[d] == m_stamp.
@@ -205,6 +230,16 @@ inline Vec2 sample_2d_at(const Sampler& s, uint32_t dim) {
 inline float get_1d(const Sampler& s, Dim d, int bounce = 0) { return sample_1d_at(s, dimension_index(d, bounce)); }
 inline Vec2 get_2d(const Sampler& s, Dim d, int bounce = 0) { return sample_2d_at(s, dimension_index(d, bounce)); }
 inline Vec2 get_pixel_2d(const Sampler& s) { return get_2d(s, Dim::Filter); }
+
+/// The same on a concrete sampler type: integrators templated on it inline the draw.
+template <class S, class = std::enable_if_t<!std::is_same_v<S, Sampler>>>
+inline float get_1d(const S& s, Dim d, int bounce = 0) {
+    return s.sample_1d(dimension_index(d, bounce));
+}
+template <class S, class = std::enable_if_t<!std::is_same_v<S, Sampler>>>
+inline Vec2 get_2d(const S& s, Dim d, int bounce = 0) {
+    return s.sample_2d(dimension_index(d, bounce));
+}
 
 /// Sequential interface: successive dimensions from k_camera_dimensions on (the same layout as the named
 /// per-bounce dimensions when drawn in the order LightSelect, Light, Bsdf, Roulette, BsdfLobe).

@@ -62,11 +62,12 @@ Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
     *alpha = 1.f;
     PathState st;
     st.aov = aov;
-    trace(camera_ray, st, 0, sampler, stats, L, alpha);
+    std::visit([&](auto& concrete) { trace(camera_ray, st, 0, concrete, stats, L, alpha); }, sampler);
     return L;
 }
 
-void PathTracer::trace(Ray ray, PathState st, int bounce, Sampler& sampler, PathStats& stats, Color& L,
+template <class ConcreteSampler>
+void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampler, PathStats& stats, Color& L,
                        float* alpha) const {
     const LightSet& lights = m_scene.lights();
     const PathSettings& cfg = m_settings;

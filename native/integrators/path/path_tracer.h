@@ -46,7 +46,9 @@ public:
     };
 
 private:
-    void trace(Ray ray, PathState state, int bounce, Sampler& sampler, PathStats& stats, Color& L,
+    /// Templated on the concrete sampler (Li dispatches once per path), so every draw inlines.
+    template <class ConcreteSampler>
+    void trace(Ray ray, PathState state, int bounce, ConcreteSampler& sampler, PathStats& stats, Color& L,
                float* alpha) const;
 
     const Scene& m_scene;
