@@ -46,6 +46,9 @@ def _args():
     ap.add_argument("--size", type=int, default=0, help="override the square resolution (0 = keep)")
     ap.add_argument("--dump", default=None, help="write a Candela scene dump here first (candela.export_dump)")
     ap.add_argument("--json", default=None, help="also write the result to this file")
+    ap.add_argument("--candela-set", action="append", default=[], metavar="KEY=VALUE",
+                    help="set a Candela render setting (scene.candela.KEY) before rendering; repeatable")
+    ap.add_argument("--tag", default="", help="suffix for the EXR names (several runs of one engine)")
     return ap.parse_args(argv)
 
 
@@ -189,6 +192,10 @@ def main():
             "transmission_bounces", "seed")}
     elif engine == "CANDELA":
         props = getattr(scene, "candela", None)
+        for item in a.candela_set:
+            key, _, value = item.partition("=")
+            current = getattr(props, key)  # AttributeError names an unknown setting
+            setattr(props, key, type(current)(value) if not isinstance(current, bool) else value in ("1", "True"))
         settings = {}
         if props is not None:
             for prop in props.bl_rna.properties:
@@ -204,7 +211,7 @@ def main():
 
     for rep in range(max(1, a.repeats)):
         for s in counts:
-            path = os.path.join(os.path.abspath(a.out), f"{engine.lower()}_{s}.exr")
+            path = os.path.join(os.path.abspath(a.out), f"{engine.lower()}{a.tag}_{s}.exr")
             entry = render_once(scene, engine, s, path)
             entry["repeat"] = rep
             entry["exr"] = path
