@@ -1,6 +1,7 @@
 // Data passes (AOVs) of the first surface the camera sees, accumulated the way Cycles 3.4 writes them
 // (kernel/film/data_passes.h, film_write_data_passes, and the pass accessor's conversion):
-//   Normal (3)  — shading normal facing the camera, world space; averaged over all of a pixel's samples.
+//   Normal (3)  — shading normal (after any Normal Map) facing the camera, world space; averaged over all of a
+//                 pixel's samples.
 //   Albedo (3)  — Cycles' (denoising) albedo of the material at the hit, textures evaluated: the sum of its
 //                 closures' colour weights, Fresnel-tinted specular lobes times their Fresnel colour, Transparent
 //                 closures left out (integrators/camera_hit.cpp); averaged over all samples.

@@ -37,8 +37,9 @@ bool record_camera_hit(const Scene& scene, const Ray& ray, const SurfaceHit& hit
         const Vec3 wo = -ray.d;
         // The material as the path tracer sees it here: textures and the Normal Map evaluated at the hit.
         const ShadingPoint sp = scene.shade(hit, wo);
-        // Cycles flips the normals of a surface seen from behind toward the viewer.
-        const Vec3 n = sp.backfacing ? -hit.ns : hit.ns;
+        // Cycles writes the closures' shading normal (after any Normal Map), flipped toward the viewer on a
+        // surface seen from behind.
+        const Vec3 n = sp.backfacing ? -sp.ns : sp.ns;
         aov->hit = true;
         aov->depth = dot(hit.p - camera.position(), camera.forward());
         aov->normal = n;
