@@ -134,7 +134,7 @@ std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, cons
                 case InputTarget::Emission:
                     if (varying) {
                         in.emission_reg = int32_t(b.reg);
-                        mat.emission = Color(0.f);  // not a light: found by BSDF sampling only
+                        mat.emission = Color(0.f);  // per hit (Scene::shade); its triangles are lights (Scene::emission)
                     } else {
                         mat.emission = vmax(regs[b.reg], Color(0.f));
                     }

@@ -33,12 +33,12 @@ struct SceneStats {
     size_t shading_bytes = 0;       // Candela's per-triangle shading data and per-instance placements
 };
 
-class Scene {
+class Scene : private EmissionSource {
 public:
     /// Builds the scene; throws InvalidScene/InvalidParameter for bad input and Cancelled if `cancel`
     /// fires during the BVH build. `arrays` must have been validated.
     Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel);
-    ~Scene();
+    ~Scene() override;
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
@@ -92,12 +92,30 @@ private:
     /// Priority among coplanar hits: emitters first, then the later geometry, then the higher triangle index.
     bool outranks(const PrimitiveRef& a, const PrimitiveRef& b) const;
     void add_environment();
+    /// Shading normal at barycentrics (b1, b2) of triangle `prim`: the interpolated smooth normal (world space),
+    /// turned to the side of the unit winding normal ng; ng itself for a flat triangle.
+    static Vec3 shading_normal(const MeshShading& s, const Placement& pl, uint32_t prim, float b1, float b2, const Vec3& ng);
+    /// The shader program's inputs at a hit on placement `pl`, seen from wo (scene/shading.cpp).
+    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl) const;
+    /// Whether material k's emission comes from its shader program (a textured emitter).
+    bool varying_emission(uint32_t k) const;
+    /// Emitted radiance of a textured emitter at barycentrics (b1, b2) of triangle `prim` of placement `pl`.
+    Color textured_emission(const Placement& pl, uint32_t prim, const Vec3& p, const Vec3& ng, float b1, float b2,
+                            const Vec3& wo) const;
+    /// Its average over the triangle v (four fixed points; only the light selection uses it).
+    Color average_emission(const Placement& pl, uint32_t prim, const Vec3 (&v)[3], const Vec3& ng) const;
+    // EmissionSource: textured emitter `id` (a row of m_emitters).
+    Color emission(uint32_t id, const Vec3& p, const Vec3& ng, float b1, float b2, const Vec3& wo) const override;
 
     EmbreeDevice m_device;
     EmbreeScene m_top;
     std::vector<EmbreeScene> m_mesh_scenes;  // one per instanced mesh
     std::vector<MeshShading> m_shading;      // per mesh (world space if flattened)
     std::vector<Placement> m_placements;     // per top-level geometry id
+    struct Emitter {
+        uint32_t placement, prim;  // top-level geometry id and the mesh's triangle
+    };
+    std::vector<Emitter> m_emitters;         // textured emitting triangles (TriangleLight::source_id)
     std::vector<uint8_t> m_object_flags;     // per top-level geometry id: ObjectFlag bits
     std::vector<float> m_material_holdout;   // per material, or empty (no Holdout closures)
     bool m_has_holdouts = false;
