@@ -93,6 +93,13 @@ TEST(TexturedEmitter, IsSampledAsALightAndEveryStrategyAgrees) {
     EXPECT_EQ(scene.scene().lights().size(), 2u);  // the lamp's two triangles
     EXPECT_EQ(scene.scene().stats().emissive_triangles, 2u);
 
+    // The light's winding normal is the one a ray hitting the lamp reports (shader programs reading the normal
+    // then see the same value from both strategies).
+    SurfaceHit hit;
+    ASSERT_TRUE(scene.scene().intersect(Ray{Vec3(0.f), normalize(Vec3(1.f, 0.f, -1.2f))}, &hit));
+    ASSERT_GE(hit.light, 0);
+    EXPECT_GT(dot(std::get<TriangleLight>(scene.scene().lights()[size_t(hit.light)]).normal, hit.ng), 0.999f);
+
     const Strategy bsdf = run(scene, "BSDF_ONLY", "SOLID_ANGLE");
     const Strategy light_sa = run(scene, "LIGHT_ONLY", "SOLID_ANGLE");  // spherical-triangle sampling: near
     const Strategy light_area = run(scene, "LIGHT_ONLY", "AREA");
