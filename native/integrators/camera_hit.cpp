@@ -46,7 +46,7 @@ bool record_camera_hit(const Scene& scene, const Ray& ray, const SurfaceHit& hit
         aov->albedo = closure_albedo(sp.bsdf(), Frame(n).to_local(wo));
         aov->object_index = float(scene.pass_index(hit));
     }
-    const float w = scene.holdout(hit);
+    const float w = scene.holdout(hit, -ray.d);
     if (w > 0.f) {
         *alpha = w >= 1.f ? 0.f : 1.f - w;
         if (w >= 1.f) return false;

@@ -121,7 +121,12 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
     m_camera.translate(m_offset);
     m_materials = load_materials(arrays);
     m_shaders = ShaderLibrary::load(arrays);
-    m_material_inputs = load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg);
+    if (const Array* h = arrays.find("material_holdout"))
+        m_material_holdout.assign(h->data<float>(), h->data<float>() + h->count());
+    m_material_inputs = load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg,
+                                             &m_material_holdout);
+    for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
+    for (const MaterialInputs& mi : m_material_inputs) m_has_holdouts |= mi.holdout_reg >= 0;
     m_threads = params.get<int>("threads", 0);
     build(arrays, cancel);
 }
@@ -142,10 +147,6 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     const size_t instance_count = arrays.rows("instance_mesh");
     const Array* flags_arr = arrays.find("instance_flags");
     const Array* pass_index_arr = arrays.find("instance_pass_index");
-    if (const Array* h = arrays.find("material_holdout")) {
-        m_material_holdout.assign(h->data<float>(), h->data<float>() + h->count());
-        for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
-    }
 
     // Vertex range and use count of every mesh.
     std::vector<MeshRange> ranges(mesh_count);

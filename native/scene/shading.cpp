@@ -49,8 +49,18 @@ ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
         const float len = length(n);
         if (len > 0.f && std::isfinite(len)) sp.ns = n / len;
     }
-    if (!mi.types.empty()) sp.own(mi.bsdf(regs.data(), sp.backfacing));
+    // Closures whose inputs were all folded at load keep the material's own BSDF.
+    if (!mi.bindings.empty()) sp.own(mi.bsdf(regs.data(), sp.backfacing));
     return sp;
+}
+
+float Scene::varying_holdout(const SurfaceHit& hit, const Vec3& wo) const {
+    const MaterialInputs& mi = m_material_inputs[size_t(m_materials[hit.material].inputs)];
+    const PrimitiveRef& prim = hit.primitive;
+    ShaderRegisters regs(m_shaders->program_size(mi.program));
+    m_shaders->evaluate(mi.program, shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom]),
+                        regs.data());
+    return holdout_weight(regs[uint32_t(mi.holdout_reg)]);
 }
 
 bool Scene::varying_emission(uint32_t k) const {
