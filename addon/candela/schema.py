@@ -41,7 +41,7 @@ SHADER_ENUMS = {
     "tex_extensions": ("REPEAT", "EXTEND", "CLIP"),
     "tex_color_spaces": ("LINEAR", "SRGB"),
     "tex_storages": ("FLOAT", "BYTE"),
-    "input_targets": ("CLOSURE", "EMISSION", "NORMAL", "WORLD"),
+    "input_targets": ("CLOSURE", "EMISSION", "NORMAL", "WORLD", "HOLDOUT"),
 }
 RAMP_SIZE = 256   # entries per ColorRamp table
 

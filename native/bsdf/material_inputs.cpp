@@ -8,8 +8,13 @@
 namespace candela {
 
 const std::vector<std::string>& input_target_names() {
-    static const std::vector<std::string> names = {"CLOSURE", "EMISSION", "NORMAL", "WORLD"};
+    static const std::vector<std::string> names = {"CLOSURE", "EMISSION", "NORMAL", "WORLD", "HOLDOUT"};
     return names;
+}
+
+float holdout_weight(const Vec3& reg) {
+    const float w = (reg.x + reg.y + reg.z) / 3.f;
+    return std::isfinite(w) ? clamp(w, 0.f, 1.f) : 0.f;
 }
 
 void MaterialInputs::apply(const Vec3* regs, float* rows_out) const {
@@ -47,7 +52,7 @@ struct RawBinding {
 
 std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, const ShaderLibrary& shaders,
                                                  std::vector<Material>& materials, int32_t* world_program,
-                                                 int32_t* world_reg) {
+                                                 int32_t* world_reg, std::vector<float>* holdout) {
     *world_program = *world_reg = -1;
     std::vector<MaterialInputs> out;
     const Array* bind = arrays.find("input_bindings");
@@ -92,6 +97,7 @@ std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, cons
                 break;
             case InputTarget::Emission:
             case InputTarget::Normal:
+            case InputTarget::Holdout:
                 if (b.row >= materials.size()) throw InvalidScene(where + ": material " + std::to_string(b.row) + " does not exist");
                 material = b.row;
                 break;
@@ -134,13 +140,21 @@ std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, cons
                 case InputTarget::Emission:
                     if (varying) {
                         in.emission_reg = int32_t(b.reg);
-                        mat.emission = Color(0.f);  // not a light: found by BSDF sampling only
+                        mat.emission = Color(0.f);  // per hit (Scene::shade); its triangles are lights (Scene::emission)
                     } else {
                         mat.emission = vmax(regs[b.reg], Color(0.f));
                     }
                     break;
                 case InputTarget::Normal:
                     if (varying) in.normal_reg = int32_t(b.reg);  // a constant normal input is ignored
+                    break;
+                case InputTarget::Holdout:
+                    if (varying) {
+                        in.holdout_reg = int32_t(b.reg);
+                    } else if (holdout) {
+                        if (holdout->size() < materials.size()) holdout->resize(materials.size(), 0.f);
+                        (*holdout)[m] = holdout_weight(regs[b.reg]);
+                    }
                     break;
                 case InputTarget::World: break;
             }
@@ -150,7 +164,7 @@ std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, cons
             mat.front = closure_list_bsdf(in.types.data(), in.rows.data(), in.types.size(), false);
             mat.back = closure_list_bsdf(in.types.data(), in.rows.data(), in.types.size(), true);
         }
-        if (!in.bindings.empty() || in.emission_reg >= 0 || in.normal_reg >= 0) {
+        if (!in.bindings.empty() || in.emission_reg >= 0 || in.normal_reg >= 0 || in.holdout_reg >= 0) {
             mat.inputs = int32_t(out.size());
             out.push_back(std::move(in));
         }

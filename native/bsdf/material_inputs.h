@@ -15,8 +15,9 @@
 namespace candela {
 
 /// What a binding feeds: a closure column (1 or 3 channels), the material's emitted radiance, its shading
-/// normal (world space), or the world's radiance.
-enum class InputTarget : uint32_t { Closure = 0, Emission, Normal, World };
+/// normal (world space), the world's radiance, or the material's Holdout weight (the channels' mean, clamped to
+/// [0, 1]).
+enum class InputTarget : uint32_t { Closure = 0, Emission, Normal, World, Holdout };
 const std::vector<std::string>& input_target_names();
 
 struct MaterialInputs {
@@ -32,6 +33,7 @@ struct MaterialInputs {
     std::vector<Binding> bindings;   // the inputs that vary
     int32_t emission_reg = -1;       // varying emitted radiance
     int32_t normal_reg = -1;         // shading normal
+    int32_t holdout_reg = -1;        // varying Holdout weight
 
     /// The closure rows with the program's registers applied.
     void apply(const Vec3* regs, float* rows_out) const;
@@ -41,9 +43,13 @@ struct MaterialInputs {
 
 /// Reads `input_bindings` for the materials: folds constant bindings into `materials` (their BSDFs and
 /// emission are rebuilt) and returns the MaterialInputs of the materials whose inputs vary, setting
-/// Material::inputs. *world_reg/*world_program receive the WORLD binding (−1 if none).
+/// Material::inputs. *world_reg/*world_program receive the WORLD binding (−1 if none). A HOLDOUT binding that
+/// does not vary is folded into `holdout` (per material, `material_holdout`; grown to the material count).
 std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, const ShaderLibrary& shaders,
                                                  std::vector<Material>& materials, int32_t* world_program,
-                                                 int32_t* world_reg);
+                                                 int32_t* world_reg, std::vector<float>* holdout = nullptr);
+
+/// The Holdout weight a register holds: the mean of its channels, clamped to [0, 1] (Cycles' average()).
+float holdout_weight(const Vec3& reg);
 
 }  // namespace candela

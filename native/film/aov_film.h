@@ -1,8 +1,10 @@
 // Data passes (AOVs) of the first surface the camera sees, accumulated the way Cycles 3.4 writes them
 // (kernel/film/data_passes.h, film_write_data_passes, and the pass accessor's conversion):
-//   Normal (3)  — shading normal facing the camera, world space; averaged over all of a pixel's samples.
-//   Albedo (3)  — the BSDF's directional albedo at the hit (Candela's estimate Σ weight·albedo(wo), the
-//                 quantity denoisers want); averaged over all samples.
+//   Normal (3)  — shading normal (after any Normal Map) facing the camera, world space; averaged over all of a
+//                 pixel's samples.
+//   Albedo (3)  — Cycles' (denoising) albedo of the material at the hit, textures evaluated: the sum of its
+//                 closures' colour weights, Fresnel-tinted specular lobes times their Fresnel colour, Transparent
+//                 closures left out (integrators/camera_hit.cpp); averaged over all samples.
 //   Depth (1)   — distance along the camera's view axis (Cycles' Z depth); from the pixel's sample 0 only,
 //                 1e10 where that sample saw no surface.
 //   IndexOB (1) — the object's pass index; from sample 0 only (an average of ids across an edge would be none).

@@ -5,12 +5,15 @@
 // distance to its plane — farther away, area sampling's density is already close to uniform in solid angle
 // and the spherical construction's trigonometry would be wasted; Cycles uses the same rule) and
 // 3e-4 < Ω < 6.22 sr; else area sampling. pdf_li(ctx, ...) mirrors the choice exactly.
+// A textured emitter (`source` set) evaluates its radiance at the sampled point (lights/emission_source.h); its
+// `radiance` is then the triangle's average, used only for power and selection bounds.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/math.h"
+#include "lights/emission_source.h"
 #include "lights/light_sample.h"
 #include "lights/spherical_sampling.h"
 #include "sampling/warp.h"
@@ -20,13 +23,37 @@ namespace candela {
 struct TriangleLight {
     Vec3 p0, p1, p2;
     Vec3 normal;  // unit geometric normal
-    Color radiance;
+    Color radiance;   // constant emission; a textured emitter's average (power and bounds only)
     float area = 0.f;
+    const EmissionSource* source = nullptr;  // textured emission: radiance evaluated at each sampled point
+    uint32_t source_id = 0;
+
+    /// Radiance leaving point p (barycentric weights b1, b2 of p1 and p2) toward wo.
+    Color Le(const Vec3& p, float b1, float b2, const Vec3& wo) const {
+        return source ? source->emission(source_id, p, normal, b1, b2, wo) : radiance;
+    }
 
     LightSample sample_li(const LightSampleContext& ctx, Vec2 u) const {
         const Vec2 b = sample_uniform_triangle(u);
         const Vec3 p = p0 * b.x + p1 * b.y + p2 * (1.f - b.x - b.y);
-        return sample_from_area_point(ctx.p, p, normal, area, radiance, /*two_sided=*/true);
+        LightSample s = sample_from_area_point(ctx.p, p, normal, area, radiance, /*two_sided=*/true);
+        if (source && s.pdf > 0.f) s.Li = Le(p, b.y, 1.f - b.x - b.y, -s.wi);
+        return s;
+    }
+
+    /// Barycentric weights (of p1, p2) of a point in the triangle's plane, clamped into the triangle.
+    Vec2 barycentrics(const Vec3& p) const {
+        const Vec3 e1 = p1 - p0, e2 = p2 - p0, d = p - p0;
+        const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), dp1 = dot(d, e1), dp2 = dot(d, e2);
+        const float det = d11 * d22 - d12 * d12;
+        if (!(det > 0.f)) return {1.f / 3.f, 1.f / 3.f};
+        float b1 = clamp((d22 * dp1 - d12 * dp2) / det, 0.f, 1.f), b2 = clamp((d11 * dp2 - d12 * dp1) / det, 0.f, 1.f);
+        if (b1 + b2 > 1.f) {
+            const float sum = b1 + b2;
+            b1 /= sum;
+            b2 /= sum;
+        }
+        return {b1, b2};
     }
 
     float pdf_li(const Vec3& d, float t) const { return area_to_solid_angle(1.f / area, t * t, std::fabs(dot(d, normal))); }
@@ -65,7 +92,13 @@ struct TriangleLight {
         s.wi = ss.w;
         s.dist = t;
         s.pdf = ss.pdf;
-        s.Li = radiance;
+        if (source) {
+            const Vec3 p = ctx.p + ss.w * t;
+            const Vec2 b = barycentrics(p);
+            s.Li = Le(p, b.x, b.y, -ss.w);
+        } else {
+            s.Li = radiance;
+        }
         return s;
     }
 

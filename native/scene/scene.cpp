@@ -121,7 +121,12 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
     m_camera.translate(m_offset);
     m_materials = load_materials(arrays);
     m_shaders = ShaderLibrary::load(arrays);
-    m_material_inputs = load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg);
+    if (const Array* h = arrays.find("material_holdout"))
+        m_material_holdout.assign(h->data<float>(), h->data<float>() + h->count());
+    m_material_inputs = load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg,
+                                             &m_material_holdout);
+    for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
+    for (const MaterialInputs& mi : m_material_inputs) m_has_holdouts |= mi.holdout_reg >= 0;
     m_threads = params.get<int>("threads", 0);
     build(arrays, cancel);
 }
@@ -142,10 +147,6 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     const size_t instance_count = arrays.rows("instance_mesh");
     const Array* flags_arr = arrays.find("instance_flags");
     const Array* pass_index_arr = arrays.find("instance_pass_index");
-    if (const Array* h = arrays.find("material_holdout")) {
-        m_material_holdout.assign(h->data<float>(), h->data<float>() + h->count());
-        for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
-    }
 
     // Vertex range and use count of every mesh.
     std::vector<MeshRange> ranges(mesh_count);
@@ -171,7 +172,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         s.emissive_rank.assign(n, -1);
         int32_t rank = 0;
         for (size_t t = 0; t < n; ++t)
-            if (m_materials[s.material[t]].is_emissive()) s.emissive_rank[t] = rank++;
+            if (m_materials[s.material[t]].is_emissive() || varying_emission(s.material[t])) s.emissive_rank[t] = rank++;
         if (std::any_of(s.material.begin(), s.material.end(), [&](uint32_t k) { return m_materials[k].inputs >= 0; }))
             s.attributes = MeshAttributes::load(arrays, m, r.tri_begin, r.tri_end);
         bool any_smooth = false;
@@ -223,7 +224,11 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     };
 
     // Emissive triangles of one placement become lights (world space).
-    auto add_triangle_lights = [&](uint32_t m, const Affine& to_world, const MeshShading& s, bool mirrored) -> int32_t {
+    // A textured emitter's light evaluates its material at each sampled point (Scene::emission); its power is
+    // the triangle's average radiance.
+    auto add_triangle_lights = [&](uint32_t m, const Affine& to_world, const MeshShading& s, const Placement& pl,
+                                   uint32_t id) -> int32_t {
+        const bool mirrored = pl.mirrored;
         const MeshRange& r = ranges[m];
         int32_t base = -1;
         for (uint32_t t = r.tri_begin; t < r.tri_end; ++t) {
@@ -244,7 +249,14 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
                 throw InvalidScene("an emissive triangle of mesh " + std::to_string(m) +
                                    " is not finite after its object's transform (is the scale too large?)");
             tl.normal = tl.area > 0.f ? normalize(mirrored ? -c : c) : Vec3(0.f, 0.f, 1.f);
-            tl.radiance = m_materials[s.material[t - r.tri_begin]].emission;
+            const uint32_t k = s.material[t - r.tri_begin];
+            tl.radiance = m_materials[k].emission;
+            if (varying_emission(k) && tl.area > 0.f) {
+                tl.radiance = average_emission(pl, t - r.tri_begin, v, tl.normal);
+                tl.source = this;
+                tl.source_id = uint32_t(m_emitters.size());
+                m_emitters.push_back({id, t - r.tri_begin});
+            }
             // Degenerate triangles keep their light slot (ranks stay dense) but have zero power, so they
             // are never selected, and a zero area never divides.
             if (!(tl.area > 0.f)) tl.radiance = Color(0.f);
@@ -300,7 +312,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             m_stats.unique_triangles += n;
             ++m_stats.meshes;
             if (m_placements.size() <= id) m_placements.resize(id + 1);
-            pl.light_base = add_triangle_lights(m, xf, m_shading[m], pl.mirrored);
+            pl.light_base = add_triangle_lights(m, xf, m_shading[m], pl, id);
             m_placements[id] = pl;
             set_object_flags(id, flags);
         } else {
@@ -330,7 +342,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             rtcReleaseGeometry(inst);
             pl.instanced = true;
             pl.normal_to_world = xf.normal_matrix();
-            pl.light_base = add_triangle_lights(m, xf, m_shading[m], pl.mirrored);
+            pl.light_base = add_triangle_lights(m, xf, m_shading[m], pl, id);
             // Camera-world magnitude of the instance: its object-space bounds' corners, transformed.
             RTCBounds ob;
             rtcGetSceneBounds(m_mesh_scenes[mesh_scene[m]].get(), &ob);
@@ -374,6 +386,16 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
                                  s.normals.capacity() * sizeof(Vec3) + s.emissive_rank.capacity() * sizeof(int32_t);
     m_stats.shading_bytes += m_placements.capacity() * sizeof(Placement);
     m_stats.embree_bytes = size_t(std::max<int64_t>(m_device.bytes(), 0));
+}
+
+Vec3 Scene::shading_normal(const MeshShading& s, const Placement& pl, uint32_t prim, float u, float v, const Vec3& ng) {
+    if (s.smooth.empty() || !s.smooth[prim]) return ng;
+    Vec3 n = s.normals[3 * prim] * (1.f - u - v) + s.normals[3 * prim + 1] * u + s.normals[3 * prim + 2] * v;
+    if (pl.instanced) n = pl.normal_to_world.vector(n);
+    const float nl = length(n);
+    if (!(nl > 0.f)) return ng;
+    n = n / nl;
+    return dot(n, ng) < 0.f ? -n : n;  // keep shading and geometric normal on one side
 }
 
 uint32_t Scene::pass_index(const SurfaceHit& hit) const { return m_placements[hit.object].pass_index; }
@@ -422,17 +444,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     if (pl.mirrored) ng = -ng;
     const float len = length(ng);
     hit->ng = len > 0.f ? ng / len : Vec3(0.f, 0.f, 1.f);
-    hit->ns = hit->ng;
-    if (!s.smooth.empty() && s.smooth[prim]) {
-        const float u = rh.hit.u, v = rh.hit.v;
-        Vec3 n = s.normals[3 * prim] * (1.f - u - v) + s.normals[3 * prim + 1] * u + s.normals[3 * prim + 2] * v;
-        if (pl.instanced) n = pl.normal_to_world.vector(n);
-        const float nl = length(n);
-        if (nl > 0.f) {
-            n = n / nl;
-            hit->ns = dot(n, hit->ng) < 0.f ? -n : n;  // keep shading and geometric normal on one side
-        }
-    }
+    hit->ns = shading_normal(s, pl, prim, rh.hit.u, rh.hit.v, hit->ng);
     hit->material = s.material[prim];
     hit->primitive = {rh.hit.geomID, prim, rh.hit.instID[0]};
     hit->object = object;

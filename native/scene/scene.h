@@ -33,12 +33,12 @@ struct SceneStats {
     size_t shading_bytes = 0;       // Candela's per-triangle shading data and per-instance placements
 };
 
-class Scene {
+class Scene : private EmissionSource {
 public:
     /// Builds the scene; throws InvalidScene/InvalidParameter for bad input and Cancelled if `cancel`
     /// fires during the BVH build. `arrays` must have been validated.
     Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel);
-    ~Scene();
+    ~Scene() override;
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
@@ -69,11 +69,14 @@ public:
     float radius() const { return m_radius; }
     const SceneStats& stats() const { return m_stats; }
 
-    /// Holdout weight of the surface hit (Cycles: 1 for a holdout object, else the material's Holdout closure
-    /// weight): alpha loses this much where the camera sees the surface.
-    float holdout(const SurfaceHit& hit) const {
+    /// Holdout weight of the surface hit seen from wo (Cycles: 1 for a holdout object, else the material's
+    /// Holdout closure weight, evaluated at the hit when a texture or Mix factor drives it): alpha loses this
+    /// much where the camera sees the surface.
+    float holdout(const SurfaceHit& hit, const Vec3& wo) const {
         if (m_object_flags[hit.object] & k_object_holdout) return 1.f;
-        return m_material_holdout.empty() ? 0.f : m_material_holdout[hit.material];
+        const int32_t inputs = m_materials[hit.material].inputs;
+        if (inputs >= 0 && m_material_inputs[size_t(inputs)].holdout_reg >= 0) return varying_holdout(hit, wo);
+        return hit.material < m_material_holdout.size() ? m_material_holdout[hit.material] : 0.f;
     }
     bool has_holdouts() const { return m_has_holdouts; }
     /// Blender's pass index of the object hit (the IndexOB pass).
@@ -92,14 +95,34 @@ private:
     /// Priority among coplanar hits: emitters first, then the later geometry, then the higher triangle index.
     bool outranks(const PrimitiveRef& a, const PrimitiveRef& b) const;
     void add_environment();
+    /// Shading normal at barycentrics (b1, b2) of triangle `prim`: the interpolated smooth normal (world space),
+    /// turned to the side of the unit winding normal ng; ng itself for a flat triangle.
+    static Vec3 shading_normal(const MeshShading& s, const Placement& pl, uint32_t prim, float b1, float b2, const Vec3& ng);
+    /// The shader program's inputs at a hit on placement `pl`, seen from wo (scene/shading.cpp).
+    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl) const;
+    /// The Holdout weight of a material whose weight comes from its shader program, at the hit (shading.cpp).
+    float varying_holdout(const SurfaceHit& hit, const Vec3& wo) const;
+    /// Whether material k's emission comes from its shader program (a textured emitter).
+    bool varying_emission(uint32_t k) const;
+    /// Emitted radiance of a textured emitter at barycentrics (b1, b2) of triangle `prim` of placement `pl`.
+    Color textured_emission(const Placement& pl, uint32_t prim, const Vec3& p, const Vec3& ng, float b1, float b2,
+                            const Vec3& wo) const;
+    /// Its average over the triangle v (four fixed points; only the light selection uses it).
+    Color average_emission(const Placement& pl, uint32_t prim, const Vec3 (&v)[3], const Vec3& ng) const;
+    // EmissionSource: textured emitter `id` (a row of m_emitters).
+    Color emission(uint32_t id, const Vec3& p, const Vec3& ng, float b1, float b2, const Vec3& wo) const override;
 
     EmbreeDevice m_device;
     EmbreeScene m_top;
     std::vector<EmbreeScene> m_mesh_scenes;  // one per instanced mesh
     std::vector<MeshShading> m_shading;      // per mesh (world space if flattened)
     std::vector<Placement> m_placements;     // per top-level geometry id
+    struct Emitter {
+        uint32_t placement, prim;  // top-level geometry id and the mesh's triangle
+    };
+    std::vector<Emitter> m_emitters;         // textured emitting triangles (TriangleLight::source_id)
     std::vector<uint8_t> m_object_flags;     // per top-level geometry id: ObjectFlag bits
-    std::vector<float> m_material_holdout;   // per material, or empty (no Holdout closures)
+    std::vector<float> m_material_holdout;   // per material (constant weights), or empty (no Holdout closures)
     bool m_has_holdouts = false;
     uint32_t m_hidden_from = 0;              // ray types some object is invisible to (they need the filter)
     Camera m_camera;

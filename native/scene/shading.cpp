@@ -7,19 +7,9 @@
 
 namespace candela {
 
-ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
-    const Material& material = m_materials[hit.material];
-    ShadingPoint sp;
-    sp.ns = hit.ns;
-    sp.emission = material.emission;
-    sp.backfacing = dot(wo, hit.ng) < 0.f;
-    sp.use(&material.bsdf(sp.backfacing));
-    if (material.inputs < 0) return sp;  // constant inputs: everything was built at load
-
+ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl) const {
     // Where on the object the hit is: UV, tangent frame, object-space position.
-    const MaterialInputs& mi = m_material_inputs[size_t(material.inputs)];
     const PrimitiveRef& prim = hit.primitive;
-    const Placement& pl = m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom];
     const MeshAttributes& attr = m_shading[pl.mesh].attributes;
     ShadingInputs in;
     in.uv = attr.uv_at(prim.prim, hit.b1, hit.b2);
@@ -36,7 +26,21 @@ ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
         in.has_tangent = true;
     }
     in.normal_to_world = pl.object_to_world.normal_matrix();
+    return in;
+}
 
+ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
+    const Material& material = m_materials[hit.material];
+    ShadingPoint sp;
+    sp.ns = hit.ns;
+    sp.emission = material.emission;
+    sp.backfacing = dot(wo, hit.ng) < 0.f;
+    sp.use(&material.bsdf(sp.backfacing));
+    if (material.inputs < 0) return sp;  // constant inputs: everything was built at load
+
+    const MaterialInputs& mi = m_material_inputs[size_t(material.inputs)];
+    const PrimitiveRef& prim = hit.primitive;
+    const ShadingInputs in = shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom]);
     ShaderRegisters regs(m_shaders->program_size(mi.program));
     m_shaders->evaluate(mi.program, in, regs.data());
     if (mi.emission_reg >= 0) sp.emission = vmax(regs[uint32_t(mi.emission_reg)], Color(0.f));
@@ -45,8 +49,58 @@ ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
         const float len = length(n);
         if (len > 0.f && std::isfinite(len)) sp.ns = n / len;
     }
-    if (!mi.types.empty()) sp.own(mi.bsdf(regs.data(), sp.backfacing));
+    // Closures whose inputs were all folded at load keep the material's own BSDF.
+    if (!mi.bindings.empty()) sp.own(mi.bsdf(regs.data(), sp.backfacing));
     return sp;
+}
+
+float Scene::varying_holdout(const SurfaceHit& hit, const Vec3& wo) const {
+    const MaterialInputs& mi = m_material_inputs[size_t(m_materials[hit.material].inputs)];
+    const PrimitiveRef& prim = hit.primitive;
+    ShaderRegisters regs(m_shaders->program_size(mi.program));
+    m_shaders->evaluate(mi.program, shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom]),
+                        regs.data());
+    return holdout_weight(regs[uint32_t(mi.holdout_reg)]);
+}
+
+bool Scene::varying_emission(uint32_t k) const {
+    const int32_t inputs = m_materials[k].inputs;
+    return inputs >= 0 && m_material_inputs[size_t(inputs)].emission_reg >= 0;
+}
+
+Color Scene::textured_emission(const Placement& pl, uint32_t prim, const Vec3& p, const Vec3& ng, float b1, float b2,
+                               const Vec3& wo) const {
+    // The hit a ray reaching p would report (Scene::intersect), as far as the shader program reads it.
+    const MeshShading& s = m_shading[pl.mesh];
+    SurfaceHit hit;
+    hit.p = p;
+    hit.ng = ng;
+    hit.ns = shading_normal(s, pl, prim, b1, b2, ng);
+    hit.material = s.material[prim];
+    hit.primitive.prim = prim;
+    hit.b1 = b1;
+    hit.b2 = b2;
+    const MaterialInputs& mi = m_material_inputs[size_t(m_materials[hit.material].inputs)];
+    ShaderRegisters regs(m_shaders->program_size(mi.program));
+    m_shaders->evaluate(mi.program, shading_inputs(hit, wo, pl), regs.data());
+    return vmax(regs[uint32_t(mi.emission_reg)], Color(0.f));
+}
+
+Color Scene::average_emission(const Placement& pl, uint32_t prim, const Vec3 (&v)[3], const Vec3& ng) const {
+    // The centroids of the four triangles of its midpoint subdivision (equal areas), seen head-on: (b1, b2)
+    // pairs. An estimate only: light sampling evaluates the exact radiance at every sampled point.
+    static constexpr float k_points[4][2] = {{1.f / 3, 1.f / 3}, {1.f / 6, 1.f / 6}, {2.f / 3, 1.f / 6}, {1.f / 6, 2.f / 3}};
+    Color sum(0.f);
+    for (const auto& b : k_points) {
+        const Vec3 p = v[0] * (1.f - b[0] - b[1]) + v[1] * b[0] + v[2] * b[1];
+        sum += textured_emission(pl, prim, p, ng, b[0], b[1], ng);
+    }
+    return sum / 4.f;
+}
+
+Color Scene::emission(uint32_t id, const Vec3& p, const Vec3& ng, float b1, float b2, const Vec3& wo) const {
+    const Emitter& e = m_emitters[id];
+    return textured_emission(m_placements[e.placement], e.prim, p, ng, b1, b2, wo);
 }
 
 void Scene::add_environment() {

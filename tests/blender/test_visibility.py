@@ -89,6 +89,21 @@ def test_holdout_object_and_holdout_shader_punch_alpha(tmp_path):
     links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
     rgba = render(scene, str(tmp_path / "holdout_shader.exr"))
     assert np.allclose(rgba[CUBE][..., 3], 0.5, atol=1e-6), rgba[CUBE][..., 3]
+    # A varying Mix factor is evaluated per hit: Fac = clamp(x + 0.5) with x the cube's object coordinate (its
+    # top face spans x ∈ [−0.5, 0.5]); a pixel covering x ∈ [a, a + 0.25] (box filter: samples stay inside it)
+    # averages alpha = 1 − Fac to 1 − (a + 0.125 + 0.5): 0.625 over column 15 (x ∈ [−0.25, 0]), 0.375 over column
+    # 16 (measured 0.620–0.630 and 0.369–0.381). Before, any varying holdout weight counted as a full holdout.
+    coord, sep, add = nodes.new("ShaderNodeTexCoord"), nodes.new("ShaderNodeSeparateXYZ"), nodes.new("ShaderNodeMath")
+    add.operation, add.use_clamp = 'ADD', True
+    add.inputs[1].default_value = 0.5
+    links.new(coord.outputs["Object"], sep.inputs["Vector"])
+    links.new(sep.outputs["X"], add.inputs[0])
+    links.new(add.outputs["Value"], mix.inputs["Fac"])
+    rgba = render(scene, str(tmp_path / "holdout_textured.exr"))
+    alpha = rgba[CUBE][..., 3]
+    # The pixel mean is exact only in expectation: 8 samples of a linear ramp spanning 0.25 in Fac have a
+    # standard deviation of at most 0.25/√12/√8 = 0.026 (independent samples; Sobol's are better); 5σ ≈ 0.13.
+    assert np.allclose(alpha[:, 0], 0.625, atol=0.13) and np.allclose(alpha[:, 1], 0.375, atol=0.13), alpha
 
 
 def test_export_writes_flags_and_pass_index():

@@ -3,11 +3,14 @@
 // and its object's pass index in IndexOB; the background has Cycles' values (Depth 1e10, zeros elsewhere).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "bsdf/material_inputs.h"
 #include "core/error.h"
 #include "session/session.h"
+#include "shader_test_helpers.h"
 #include "test_helpers.h"
 
 namespace candela::test {
@@ -61,6 +64,108 @@ TEST(Aov, PlaneFacingTheCameraHasItsDepthNormalAlbedoAndIndex) {
         EXPECT_NEAR(p.albedo[3 * i + 1], 0.5f, 1e-6f);
         EXPECT_NEAR(p.albedo[3 * i + 2], 0.75f, 1e-6f);
         EXPECT_EQ(p.index[i], 7.f);
+    }
+}
+
+uint32_t closure_column(const char* name) {
+    const auto& c = closure_columns();
+    return uint32_t(std::find(c.begin(), c.end(), name) - c.begin());
+}
+
+/// A quad [−1, 1]² at z = −2 filling the view, UVs 0..1 over it, with material 0 = `closure` whose colour
+/// input (`column`) is a 2 × 1 image: `left` for u < ½, `right` beyond (closest texel).
+SceneArrays two_tone_quad(const char* closure, const char* column, Color left, Color right,
+                          std::vector<std::pair<std::string, float>> values = {}) {
+    MeshBuilder m;
+    const uint32_t mat = m.add_material(Color(0.9f), Color(0.f));  // base: unused once the material has closures
+    m.add_instance(m.add_quad_z(-1, 1, -1, 1, -2, mat));
+    for (const char* c : {"color_r", "color_g", "color_b"}) values.emplace_back(c, 0.5f);
+    m.add_closure(mat, closure, values);
+    SceneArrays a = m.arrays();
+    const float uv[12] = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};  // add_quad_z's corner order
+    a.set("uvs", ElemType::F32, {2, 3, 2}, uv);
+    ProgramBuilder b;
+    const uint32_t tex = b.image(2, 1, {left, right});
+    const uint32_t co = b.op(ShaderOpCode::Coord, 0, 0, 0, {uint32_t(CoordKind::Uv)});
+    const uint32_t reg = b.op(ShaderOpCode::Image, co, 0, 0, {tex, uint32_t(TexInterpolation::Closest), uint32_t(TexExtension::Extend), 0});
+    const uint32_t p = b.end_program();
+    b.bind(InputTarget::Closure, 0, closure_column(column), 3, p, reg);
+    b.add_to(a);
+    return a;
+}
+
+/// Per-pixel value of channel c of a 3-channel pass, averaged over the pixels clearly left or right of the middle.
+float half_mean(const std::vector<float>& pass, int c, bool left) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (left ? x >= W / 2 - 1 : x <= W / 2) continue;
+            sum += pass[3 * (size_t(y) * W + x) + c];
+            ++n;
+        }
+    return float(sum / n);
+}
+
+TEST(Aov, AlbedoShowsTheTexturedDiffuseColour) {
+    // Cycles' albedo of a Diffuse BSDF is its colour, here a texture: each half of the quad shows its texel
+    // exactly (no noise: every sample of a pixel lands on one texel), not the closure's 0.5 placeholder.
+    const Passes p = render_passes(two_tone_quad("DIFFUSE", "color_r", Color(0.1f, 0.2f, 0.3f), Color(0.9f, 0.6f, 0.4f)),
+                                   pass_params());
+    EXPECT_NEAR(half_mean(p.albedo, 0, true), 0.1f, 1e-6f);
+    EXPECT_NEAR(half_mean(p.albedo, 1, true), 0.2f, 1e-6f);
+    EXPECT_NEAR(half_mean(p.albedo, 2, true), 0.3f, 1e-6f);
+    EXPECT_NEAR(half_mean(p.albedo, 0, false), 0.9f, 1e-6f);
+    EXPECT_NEAR(half_mean(p.albedo, 1, false), 0.6f, 1e-6f);
+    EXPECT_NEAR(half_mean(p.albedo, 2, false), 0.4f, 1e-6f);
+}
+
+TEST(Aov, AlbedoShowsTheTexturedPrincipledBaseColour) {
+    // Principled, metallic 0, specular 0, no sheen/clearcoat/transmission: one diffuse closure of weight base
+    // colour, so Cycles' albedo is the textured base colour.
+    const Passes p = render_passes(two_tone_quad("PRINCIPLED", "color_r", Color(0.25f, 0.5f, 0.75f), Color(0.8f, 0.1f, 0.2f),
+                                                 {{"specular", 0.f}, {"roughness", 0.5f}, {"ior", 1.45f}}),
+                                   pass_params());
+    EXPECT_NEAR(half_mean(p.albedo, 0, true), 0.25f, 1e-6f);
+    EXPECT_NEAR(half_mean(p.albedo, 2, true), 0.75f, 1e-6f);
+    EXPECT_NEAR(half_mean(p.albedo, 0, false), 0.8f, 1e-6f);
+    EXPECT_NEAR(half_mean(p.albedo, 1, false), 0.1f, 1e-6f);
+}
+
+TEST(Aov, AlbedoLeavesOutTransparentClosures) {
+    // Mix of Diffuse (colour 0.6, weight 0.3) and Transparent (weight 0.7): Cycles' albedo is the diffuse
+    // closure's colour weight 0.18 only.
+    MeshBuilder m;
+    const uint32_t mat = m.add_material(Color(0.9f), Color(0.f));
+    m.add_instance(m.add_quad_z(-1, 1, -1, 1, -2, mat));
+    m.add_closure(mat, "DIFFUSE", {{"weight_r", 0.3f}, {"weight_g", 0.3f}, {"weight_b", 0.3f},
+                                   {"color_r", 0.6f}, {"color_g", 0.6f}, {"color_b", 0.6f}});
+    m.add_closure(mat, "TRANSPARENT", {{"weight_r", 0.7f}, {"weight_g", 0.7f}, {"weight_b", 0.7f},
+                                       {"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}});
+    const Passes p = render_passes(m.arrays(), pass_params());
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(half_mean(p.albedo, c, true), 0.18f, 1e-6f);
+}
+
+TEST(Aov, NormalPassShowsTheNormalMappedShadingNormal) {
+    // A World-space Normal Map of the constant colour (0.8, 0.5, 0.9) is the unit normal (0.6, 0, 0.8) at every
+    // hit (camera-world = world here: the camera sits at the origin). Cycles writes that shading normal, not the
+    // quad's geometric (0, 0, 1). Exact up to float rounding: every sample sees the same normal.
+    MeshBuilder m;
+    const uint32_t mat = m.add_material(Color(0.5f), Color(0.f));
+    m.add_instance(m.add_quad_z(-1, 1, -1, 1, -2, mat));
+    m.add_closure(mat, "DIFFUSE", {{"color_r", 0.5f}, {"color_g", 0.5f}, {"color_b", 0.5f}});
+    SceneArrays a = m.arrays();
+    ProgramBuilder b;
+    const uint32_t n = b.op(ShaderOpCode::NormalMap, b.constant(Vec3(0.8f, 0.5f, 0.9f)), b.constant(Vec3(1.f)), 0,
+                            {uint32_t(NormalMapSpace::World)});
+    const uint32_t prog = b.end_program();
+    b.bind(InputTarget::Normal, 0, 0, 3, prog, n);
+    b.add_to(a);
+    const Passes p = render_passes(std::move(a), pass_params());
+    for (bool left : {true, false}) {
+        EXPECT_NEAR(half_mean(p.normal, 0, left), 0.6f, 1e-5f);
+        EXPECT_NEAR(half_mean(p.normal, 1, left), 0.f, 1e-5f);
+        EXPECT_NEAR(half_mean(p.normal, 2, left), 0.8f, 1e-5f);
     }
 }
 

@@ -208,5 +208,53 @@ TEST(TexturedMaterial, BadBindingsNameTheBinding) {
     }
 }
 
+/// Mean alpha of the pixels clearly left or right of the middle.
+float half_alpha(const RenderResult& r, bool left) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < r.height; ++y)
+        for (int x = 0; x < r.width; ++x) {
+            if (left ? x >= r.width / 2 - 1 : x <= r.width / 2) continue;
+            sum += r.rgba[4 * (size_t(y) * r.width + x) + 3];
+            ++n;
+        }
+    return float(sum / n);
+}
+
+TEST(TexturedMaterial, TexturedHoldoutWeightIsEvaluatedPerHit) {
+    // A Diffuse quad whose Holdout weight is a texture (a Mix Shader factor from an Image Texture, as the add-on
+    // compiles it): 0.25 on the left half, 1 on the right. Cycles takes the weight out of alpha where the camera
+    // sees the surface: alpha 0.75 left, 0 right (a full holdout). Exact: every sample of a pixel sees one texel.
+    MeshBuilder m = quad(Color(0.5f), Color(0.f));
+    m.add_closure(0, "DIFFUSE", {{"color_r", 0.5f}, {"color_g", 0.5f}, {"color_b", 0.5f}});
+    SceneArrays a = m.arrays();
+    add_quad_uvs(a);
+    const float placeholder = 0.f;
+    a.set("material_holdout", ElemType::F32, {1}, &placeholder);
+    ProgramBuilder b;
+    uint32_t reg;
+    const uint32_t p = two_tone(b, Color(0.25f), Color(1.f), CoordKind::Uv, &reg);
+    b.bind(InputTarget::Holdout, 0, 0, 3, p, reg);
+    b.add_to(a);
+    const RenderResult r = render(std::move(a), basic_params(16, 12, 4, 1));
+    EXPECT_NEAR(half_alpha(r, true), 0.75f, 1e-5f);
+    EXPECT_NEAR(half_alpha(r, false), 0.f, 1e-6f);
+    EXPECT_NEAR(half_mean(r, false).x, 0.f, 1e-6f);  // a full holdout ends the path: no radiance
+}
+
+TEST(TexturedMaterial, ConstantHoldoutBindingIsFolded) {
+    // A HOLDOUT binding that does not vary is folded into the material's weight at load: alpha 1 − 0.4.
+    MeshBuilder m = quad(Color(0.5f), Color(0.f));
+    SceneArrays a = m.arrays();
+    ProgramBuilder b;
+    const uint32_t reg = b.constant(Vec3(0.2f, 0.4f, 0.6f));  // mean 0.4
+    const uint32_t p = b.end_program();
+    b.bind(InputTarget::Holdout, 0, 0, 3, p, reg);
+    b.add_to(a);
+    const RenderResult r = render(std::move(a), basic_params(8, 6, 2, 0));
+    EXPECT_NEAR(half_alpha(r, true), 0.6f, 1e-5f);
+    EXPECT_NEAR(half_alpha(r, false), 0.6f, 1e-5f);
+}
+
 }  // namespace
 }  // namespace candela::test

@@ -9,8 +9,9 @@ one weighted closure, Emission adds radiance, Principled's Alpha mixes with a Tr
 is a register of the material's program bound to the closure column. Weights (a Mix Shader factor from a texture),
 emission and the BSDFs' Normal input can vary too. An unsupported shader node falls back to the material's
 viewport colour as a diffuse closure, with one warning per material naming the node — never silently black.
-A Holdout node's (constant part of its) weight goes to the `material_holdout` table (alpha loses it where the
-camera sees the surface).
+A Holdout node's weight (summed over the tree) goes to the `material_holdout` table when it is constant, else
+(a Mix Shader factor from a texture) it is a register bound to the material's `HOLDOUT` input, evaluated at each
+hit; alpha loses it where the camera sees the surface.
 """
 
 import numpy as np
@@ -34,12 +35,13 @@ def _rgb(value):
 
 
 
-def _constant_weight(weight):
-    """A Holdout weight as a number: its mean if constant. Per-hit (textured) holdout weights are not supported
-    yet: a varying weight counts as a full holdout (the Holdout node is there to cut the surface out)."""
-    if is_const(weight):
-        return sum(weight) / len(weight)
-    return 1.0
+def _holdout_value(weight):
+    """The `material_holdout` number of a Holdout weight: the mean of its channels, at most 1 (a register: 0,
+    the weight is bound to the material's HOLDOUT input instead)."""
+    if not is_const(weight):
+        return 0.0
+    return min(sum(const3(weight)) / 3.0, 1.0)
+
 
 class _Reader:
     """Walks one material's node tree into closures [(type, {name: value})], emission and a normal."""
@@ -50,7 +52,7 @@ class _Reader:
         self.nodes = NodeCompiler(tables, self.owner, warnings)
         self.program = self.nodes.program
         self.closures, self.emission = [], (0.0, 0.0, 0.0)
-        self.holdout = 0.0    # Holdout closure weight (Cycles: alpha loses it where the camera sees the surface)
+        self.holdout = (0.0, 0.0, 0.0)   # Holdout closure weight, a constant or a register (Cycles: alpha loses it)
         self.normal, self._normal_from = None, None
 
     def warn(self, message):
@@ -134,7 +136,7 @@ class _Reader:
         elif kind == "ShaderNodeBsdfPrincipled":
             self.principled(node, weight, ctx)
         elif kind == "ShaderNodeHoldout":
-            self.holdout += _constant_weight(weight)
+            self.holdout = p.add(self.holdout, weight)
         else:
             self.warn(f"node '{node.name}' ({kind}) is not supported yet; using the material's viewport colour there")
             self.closure("DIFFUSE", weight, color=_rgb(self.material.diffuse_color))
@@ -185,7 +187,7 @@ def read_material(material, warnings, tables=None):
     program = tables.add_program(reader.program)
     # A material of pure emission (or all-black closures) must not fall back to the base colour: mark it black.
     return {"base": (0.0, 0.0, 0.0) if not reader.closures else base, "emission": reader.emission,
-            "closures": reader.closures, "holdout": min(reader.holdout, 1.0), "normal": reader.normal,
+            "closures": reader.closures, "holdout": reader.holdout, "normal": reader.normal,
             "program": program, "uses": frozenset(reader.nodes.uses)}
 
 
@@ -228,6 +230,8 @@ class MaterialTable:
             table.append(schema.row(columns, values))
             if m["normal"] is not None:
                 self.tables.bind("NORMAL", index, 0, 3, m["program"], m["normal"])
+            if not is_const(m.get("holdout", 0.0)):
+                self.tables.bind("HOLDOUT", index, 0, 3, m["program"], m["holdout"])
             for kind, closure_values in m["closures"]:
                 closure = len(owners)
                 row = {}
@@ -256,5 +260,5 @@ class MaterialTable:
             "closure_material": np.array(owners, np.uint32),
             "closure_type": np.array(kinds, np.uint32),
             "closure_params": np.array(params, np.float32).reshape(len(owners), len(closure_columns)),
-            "material_holdout": np.array([m.get("holdout", 0.0) for m in self.rows], np.float32),
+            "material_holdout": np.array([_holdout_value(m.get("holdout", 0.0)) for m in self.rows], np.float32),
         }
