@@ -528,7 +528,8 @@ TEST(BsdfPrincipled, ClosureListMatchesCycles) {
     PrincipledParams q;
     q.anisotropic = 0.5f;
     q.roughness = 0.4f;
-    const auto& s2 = std::get<MicrofacetReflection>(principled_bsdf(q)[1].lobe);
+    const Bsdf anisotropic = principled_bsdf(q);  // kept alive: s2 refers into it
+    const auto& s2 = std::get<MicrofacetReflection>(anisotropic[1].lobe);
     EXPECT_NEAR(s2.distribution.alpha_x, 0.16f / std::sqrt(0.55f), 1e-6f);
     EXPECT_NEAR(s2.distribution.alpha_y, 0.16f * std::sqrt(0.55f), 1e-6f);
 }
