@@ -97,7 +97,8 @@ def extrapolation_factor(line):
         return 1.0
     if line["sigma"] <= 0:
         return F_CAP
-    return max(1.0, min(F_CAP, TIME_TOLERANCE ** (abs(line["slope"]) / line["sigma"])))
+    log_f = math.log(TIME_TOLERANCE) * abs(line["slope"]) / line["sigma"]   # in logs: 1.3^(|s|/σ) overflows
+    return max(1.0, math.exp(min(math.log(F_CAP), log_f)))
 
 
 def time_to(target, samples, times, errs, line):
