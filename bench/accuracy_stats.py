@@ -13,9 +13,10 @@ E[(L − ref)²] = E[(L − L_true)²] + Var(ref) when L and ref are independent
           under-states the error by design and is labelled as such.
 
 Time: the cost of a render is its process CPU time (all render threads), which another job on this shared
-machine slows far less than wall time. Per configuration the cost per sample c is the Theil–Sen slope of CPU
-time against the sample count (the median of pairwise slopes: one disturbed render cannot move it, and the
-per-render set-up, the intercept, drops out), and the time of the n-sample point is c·n.
+machine slows far less than wall time (though still by up to ~30 %: the cores are shared). The cost per
+sample c comes from an interleaved timing phase (bench/accuracy_timing.py, interleaved_cost below); the
+Theil–Sen slope of CPU time against samples over a configuration's own sequence (cost_per_sample) is kept in
+the CSV for comparison. The time of the n-sample point is c·n.
 """
 
 import math
@@ -65,6 +66,20 @@ def cost_per_sample(samples, cpu_seconds):
     if not slopes:
         return cpu_seconds[0] / samples[0]
     return max(float(np.median(slopes)), 1e-12)
+
+
+def interleaved_cost(runs):
+    """{configuration: cost per sample} from bench/accuracy_timing.py's runs: per configuration the least CPU
+    time at each of its two counts over the repeats, then (t₂ − t₁) / (n₂ − n₁)."""
+    best = {}
+    for r in runs:
+        key = (r["configuration"], r["samples"])
+        best[key] = min(best.get(key, float("inf")), r["cpu_seconds"])
+    out = {}
+    for label in {k[0] for k in best}:
+        (n1, t1), (n2, t2) = sorted((n, t) for (c, n), t in best.items() if c == label)[:2]
+        out[label] = max((t2 - t1) / (n2 - n1), 1e-12)
+    return out
 
 
 def fit(samples, errs, ref_noise_fractions):
