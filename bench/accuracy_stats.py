@@ -10,7 +10,10 @@ E[(L − ref)²] = E[(L − L_true)²] + Var(ref) when L and ref are independent
           noise-corrected over the same pixels. Heavy-tailed scenes (small, very bright emitters seen directly
           or in mirrors, fireflies) put most of the squared error in a few pixels, so one image's rrmse
           swings by factors between sample counts; this metric says what the rest of the image does. It
-          under-states the error by design and is labelled as such.
+          under-states the error by design and is labelled as such. Its noise correction subtracts the
+          reference's estimated noise over the kept pixels (a − b is uncorrelated with d, so selecting on d
+          does not bias that estimate for symmetric noise).
+  top_share the share of the raw squared error in those dropped pixels (near 1: heavy-tailed).
 
 Time: the cost of a render is its process CPU time (all render threads), which another job on this shared
 machine slows far less than wall time (though still by up to ~30 %: the cores are shared). The cost per
@@ -54,9 +57,14 @@ def errors(image, ref_a, ref_b):
     relmse = max(float(np.mean((d2 - v) / (ref ** 2 + EPS))), 0.0)
     flat_d2, flat_v = d2.ravel(), v.ravel()
     keep = np.argsort(flat_d2)[: max(1, int(round(flat_d2.size * (1.0 - TRIM))))]
-    robust = math.sqrt(max(float(np.mean(flat_d2[keep]) - np.mean(flat_v[keep])), 0.0)) / mean_ref
+    kept_d2, kept_v = float(np.mean(flat_d2[keep])), float(np.mean(flat_v[keep]))
+    robust = math.sqrt(max(kept_d2 - kept_v, 0.0)) / mean_ref
+    total = float(np.sum(flat_d2))
     return {"rrmse": rrmse, "relmse": relmse, "robust": robust,
-            "ref_noise_fraction": float(np.mean(v)) / raw if raw > 0 else 1.0}
+            "ref_noise_fraction": float(np.mean(v)) / raw if raw > 0 else 1.0,
+            "robust_ref_noise_fraction": kept_v / kept_d2 if kept_d2 > 0 else 1.0,
+            # how heavy-tailed the error is: the share of the raw squared error in the dropped pixels
+            "top_share": 1.0 - float(np.sum(flat_d2[keep])) / total if total > 0 else 0.0}
 
 
 def cost_per_sample(samples, cpu_seconds):
