@@ -4,17 +4,18 @@
 
 For every scene (examples/scenes.py) and every configuration — Cycles, and Candela with each integrator and
 each sampler the native module offers — it renders at 1, 2, 4, … samples per pixel, measures the CPU time of
-every render (bench/accuracy_render.py) and the error against a high-sample reference of the SAME engine
+every render (all configurations of a scene round-robin in one Blender process: bench/accuracy_sequences.py)
+and the error against a high-sample reference of the SAME engine
 (rendered once as two independent halves and cached in OUT/cache, keyed by scene, size, engine and the
 renderer's build), and writes:
   DOCS/accuracy.md          a table per scene: time to reach 5 % / 2 % / 1 % relative RMSE (measured, or
                             extrapolated within a stated bound), the fitted slope ± its standard error, the ratio
-                            to Cycles' time, cost per sample and MSE at equal samples against Cycles, relative
+                            to Cycles' time, time and MSE at equal samples against Cycles, relative
                             MSE and a trimmed relative RMSE; the method is written into the report
   DOCS/accuracy/SCENE.png   log-log error-vs-time plots (relative RMSE, trimmed dotted; relative MSE), one line
                             per configuration, Cycles included
   DOCS/accuracy/measurements.csv   every measurement (CPU and wall times, all metrics)
-The statistics (metrics, cost per sample, fits, the extrapolation bound) are in bench/accuracy_stats.py.
+The statistics (metrics, set-up, fits, the extrapolation bound) are in bench/accuracy_stats.py.
 All times come from one run on one machine; the report says which and when. The defaults (96 px, up to 256
 samples, references of 2048) take about 10 minutes on an idle 2-core machine and stay under 30 under load.
 --quick (for `make test`) renders 32 px images at up to 8 samples into OUT only, to check the pipeline (about
@@ -54,12 +55,10 @@ def parse_args():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--scenes", default=None, help="comma-separated subset of the scenes")
     ap.add_argument("--configs", default=None, help="comma-separated subset of the configuration labels")
-    ap.add_argument("--timing-counts", default="4,32", help="the two counts of the interleaved timing phase")
-    ap.add_argument("--timing-repeats", type=int, default=3, help="rounds of the interleaved timing phase")
+    ap.add_argument("--repeats", type=int, default=1, help="renders per configuration and count (least CPU kept)")
     a = ap.parse_args()
     if a.quick:
         a.size, a.max_samples, a.ref_factor = 32, 8, 8
-        a.timing_counts, a.timing_repeats = "2,4", 1
         a.scenes = a.scenes or "cornell_box,soft_shadow"
     a.out = Path(a.out or Path(a.build) / ("accuracy-quick" if a.quick else "accuracy"))
     return a
@@ -138,48 +137,46 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def timing(scene, configs):
-    """Cost per sample (CPU seconds per image sample pass) of every configuration, measured interleaved in one
-    Blender process (bench/accuracy_timing.py): {label: seconds}."""
-    args = ["--scene", scene, "--size", str(ARGS.size), "--threads", str(ARGS.threads),
-            "--counts", ARGS.timing_counts, "--repeats", str(ARGS.timing_repeats), "--out", str(ARGS.out / "renders")]
+def sequences(scene, configs, counts):
+    """Render every configuration at every count, round-robin in one Blender process
+    (bench/accuracy_sequences.py): {label: [run, …]} with the least CPU time over the repeats."""
+    args = ["--scene", scene, "--size", str(ARGS.size), "--threads", str(ARGS.threads), "--counts",
+            ",".join(map(str, counts)), "--repeats", str(ARGS.repeats), "--out", str(ARGS.out / "renders")]
     for label, engine, settings in configs:
         args += ["--config", f"{label}|{engine}|{','.join(settings)}"]
-    res = run_blender(args, ARGS.out / f"{scene}_timing.log", "accuracy_timing.py", "ACCURACY_TIMING_JSON ")
-    return stats.interleaved_cost(res["runs"])
+    res = run_blender(args, ARGS.out / f"{scene}_sequences.log", "accuracy_sequences.py", "ACCURACY_SEQUENCES_JSON ")
+    best = {}
+    for run in res["runs"]:
+        key = (run["configuration"], run["samples"])
+        if key not in best or run["cpu_seconds"] < best[key]["cpu_seconds"]:
+            best[key] = run
+    return {label: [best[(label, n)] for n in counts] for label, _, _ in configs}
 
 
-def measure(scene, label, engine, settings, ref, counts, rows, cost):
-    """Render one configuration at every count; its points as a dict of lists (samples, cpu, seconds, …)."""
-    tag = f"{scene}_{label.replace(' ', '_')}"
-    args = ["--scene", scene, "--engine", engine, "--counts", ",".join(map(str, counts)), "--size",
-            str(ARGS.size), "--threads", str(ARGS.threads), "--out", str(ARGS.out / "renders"), "--tag", tag]
-    for s in settings:
-        args += ["--set", s]
-    res = run_blender(args, ARGS.out / f"{tag}.log")
+def measure(scene, label, runs, ref, rows):
+    """One configuration's points as a dict of lists (samples, cpu, time, the metrics …)."""
     native = native_module()
     metrics = ("rrmse", "relmse", "robust", "ref_noise_fraction", "robust_ref_noise_fraction", "top_share")
     p = {k: [] for k in ("samples", "cpu", "wall", *metrics)}
-    for run in res["runs"]:
+    for run in runs:
         err = stats.errors(stats.luminance(native.read_exr(run["exr"])), *ref)
         p["samples"].append(run["samples"])
         p["cpu"].append(run["cpu_seconds"])
         p["wall"].append(run["wall_seconds"])
         for k in metrics:
             p[k].append(err[k])
+    p["setup"], p["time"] = stats.render_times(p["samples"], p["cpu"])
     p["cost_sequence"] = stats.cost_per_sample(p["samples"], p["cpu"])
-    p["cost"] = cost
-    p["time"] = [p["cost"] * n for n in p["samples"]]
     for i, n in enumerate(p["samples"]):
         rows.append({"scene": scene, "configuration": label, "samples": n,
                      "cpu_seconds": f"{p['cpu'][i]:.6f}", "wall_seconds": f"{p['wall'][i]:.6f}",
-                     "cost_model_seconds": f"{p['time'][i]:.6f}",
-                     "cost_per_sample_interleaved": f"{cost:.6g}",
-                     "cost_per_sample_sequence": f"{p['cost_sequence']:.6g}", "relative_rmse": f"{p['rrmse'][i]:.6g}",
-                     "relative_mse": f"{p['relmse'][i]:.6g}", "trimmed_relative_rmse": f"{p['robust'][i]:.6g}",
+                     "setup_cpu_seconds": f"{p['setup']:.6f}", "time_seconds": f"{p['time'][i]:.6f}",
+                     "relative_rmse": f"{p['rrmse'][i]:.6g}", "relative_mse": f"{p['relmse'][i]:.6g}",
+                     "trimmed_relative_rmse": f"{p['robust'][i]:.6g}",
                      "worst_pixels_error_share": f"{p['top_share'][i]:.4g}",
                      "reference_noise_fraction": f"{p['ref_noise_fraction'][i]:.4g}"})
-    print(f"{scene:12s} {label:28s} {1e3 * cost:.2f} ms/spp (sequence {1e3 * p['cost_sequence']:.2f})  " +
+    print(f"{scene:12s} {label:28s} {1e3 * p['time'][-1] / p['samples'][-1]:.2f} ms/spp at {p['samples'][-1]} "
+          f"(Theil-Sen {1e3 * p['cost_sequence']:.2f})  " +
           "  ".join(f"{n}:{e:.3f}/{r:.3f}" for n, e, r in zip(p["samples"], p["rrmse"], p["robust"])), flush=True)
     return p
 
@@ -200,13 +197,11 @@ def main():
     ARGS.out.mkdir(parents=True, exist_ok=True)
     rows, results = [], {}
     for scene in scene_names:
-        refs = {}
-        costs = timing(scene, configs)
-        for label, engine, settings in configs:
-            if engine not in refs:
-                refs[engine] = reference(scene, engine, ARGS.ref_factor * ARGS.max_samples)
-            results[(scene, label)] = measure(scene, label, engine, settings, refs[engine], counts, rows,
-                                              costs[label])
+        refs = {engine: reference(scene, engine, ARGS.ref_factor * ARGS.max_samples)
+                for engine in dict.fromkeys(engine for _, engine, _ in configs)}
+        runs = sequences(scene, configs, counts)
+        for label, engine, _ in configs:
+            results[(scene, label)] = measure(scene, label, runs[label], refs[engine], rows)
     write_outputs(scene_names, configs, results, rows, started)
     print(f"accuracy: done in {time.time() - started:.0f} s; results in {ARGS.out}" +
           ("" if ARGS.quick else f" and {ARGS.docs}/accuracy.md"))
@@ -244,7 +239,7 @@ def scene_tables(scene, configs, results, n_max):
     cyc = results.get((scene, "Cycles"))
     fits = {m: stats.fit(cyc["samples"], cyc[m], cyc[f]) if cyc else None
             for m, f in (("rrmse", "ref_noise_fraction"), ("robust", "robust_ref_noise_fraction"))}
-    main = ["| configuration | 5 % | 2 % | 1 % | slope ± σ | time vs Cycles at 2 % | cost per sample vs Cycles "
+    main = [f"| configuration | 5 % | 2 % | 1 % | slope ± σ | time vs Cycles at 2 % | time vs Cycles at {n_max} spp "
             f"| rel. RMSE at {n_max} spp | MSE vs Cycles at {n_max} spp | rel. MSE at {n_max} spp "
             f"| worst {100 * stats.TRIM:g} % of pixels' share of the squared error |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -256,7 +251,7 @@ def scene_tables(scene, configs, results, n_max):
         cells, slope, time_ratio = target_cells(p, "rrmse", cyc, fits["rrmse"])
         mse_ratio = ratio(p["rrmse"][-1] ** 2, cyc["rrmse"][-1] ** 2) if cyc else "—"
         main.append(f"| {label} | {' | '.join(cells)} | {slope} | {time_ratio} | "
-                    f"{ratio(p['cost'], cyc['cost']) if cyc else '—'} | {p['rrmse'][-1]:.3g} | {mse_ratio} | "
+                    f"{ratio(p['time'][-1], cyc['time'][-1]) if cyc else '—'} | {p['rrmse'][-1]:.3g} | {mse_ratio} | "
                     f"{p['relmse'][-1]:.3g} | {100 * p['top_share'][-1]:.0f} % |")
         cells, slope, time_ratio = target_cells(p, "robust", cyc, fits["robust"])
         mse_ratio = ratio(p["robust"][-1] ** 2, cyc["robust"][-1] ** 2) if cyc else "—"
@@ -279,7 +274,7 @@ def plot(scene, configs, results, path):
     axes[0].set_ylabel(f"relative RMSE (dotted: trimmed, {100 * stats.TRIM:g} % largest errors dropped)")
     axes[1].set_ylabel("relative MSE")
     for ax in axes:
-        ax.set_xlabel("CPU time [s] (cost per sample × samples)")
+        ax.set_xlabel("CPU time [s], set-up excluded")
         ax.grid(True, which="both", alpha=0.3)
     axes[1].legend(fontsize=7)
     fig.suptitle(scene.replace("_", " "))
@@ -317,15 +312,15 @@ def write_outputs(scene_names, configs, results, rows, started):
           f"The second table per scene is the *trimmed rel. RMSE*, without the {100 * stats.TRIM:g} % of "
           "pixels with the largest errors: a robust figure for heavy-tailed scenes, not an error bound (it "
           "leaves out the fireflies by construction).",
-          "- **Time** is CPU time (both render threads summed; on an idle machine the wall time is about half). "
-          "Wall time on this shared 2-core machine follows the other jobs' load (it made the previous report's "
-          "Cornell box show Candela at 2.4× Cycles' time per sample where the CPU cost is about 0.8×), and even "
-          "CPU time moves by ±30 % with it (shared cores). So each configuration's *cost per sample* comes "
-          f"from a separate timing phase per scene: all configurations in one Blender process, round-robin, "
-          f"{ARGS.timing_repeats} rounds at {ARGS.timing_counts.replace(',', ' and ')} samples; per "
-          "configuration the least CPU time at each count, and cost = (t(n₂) − t(n₁)) / (n₂ − n₁), so the "
-          "per-render set-up (export, BVH, Cycles' sync) cancels. A point's time is cost × samples. The CSV "
-          "also has every render's measured CPU and wall time.",
+          "- **Time** is CPU time (both render threads summed; on an idle machine the wall time is about half), "
+          "less the per-render set-up (export, BVH, Cycles' sync) estimated as 2·t(1) − t(2). Wall time on "
+          "this shared 2-core machine follows the other jobs' load: it made the previous report show Candela "
+          "at 2.4× Cycles' time per sample on the Cornell box, where the CPU time says about 0.8×. CPU time "
+          "moves less, but still by up to ~30 % (the cores are shared), so all configurations of a scene "
+          "render in one Blender process, round-robin — each count in turn for every configuration — and a "
+          "load that comes and goes hits them alike"
+          + (f"; each render is repeated {ARGS.repeats}× and the least CPU time kept" if ARGS.repeats > 1 else "")
+          + ". The CSV also has every render's wall time.",
           f"- **Slope** is the least-squares exponent of rel. RMSE ∝ samples^s (= time^s), fitted on the counts "
           f"≥ {stats.MIN_SAMPLES_FIT} where the reference's noise is under {100 * stats.REF_NOISE_MAX:g} % of "
           "the raw squared error, with its standard error σ (a lower bound: the points are nested). −0.5 is "
@@ -338,7 +333,7 @@ def write_outputs(scene_names, configs, results, rows, started):
           f"{stats.TIME_TOLERANCE:g}^(|s|/σ)). `~` marks such a time; `> t` means not reached within it "
           "(t = the last measured time); `—` no usable value.",
           "- **Ratios to Cycles**: the time ratio at 2 % only where both times are measured or within the "
-          "bound; *cost per sample* and *MSE at equal samples* always (for slopes near −0.5, the time ratio "
+          f"bound; the *time* and the *MSE* at {n_max} samples always (for slopes near −0.5, the time ratio "
           "at equal error is about their product).", ""]
     for scene in scene_names:
         md += [f"## {scene.replace('_', ' ').title()}", "", f"![{scene}](accuracy/{scene}.png)", ""]

@@ -16,10 +16,11 @@ E[(L − ref)²] = E[(L − L_true)²] + Var(ref) when L and ref are independent
   top_share the share of the raw squared error in those dropped pixels (near 1: heavy-tailed).
 
 Time: the cost of a render is its process CPU time (all render threads), which another job on this shared
-machine slows far less than wall time (though still by up to ~30 %: the cores are shared). The cost per
-sample c comes from an interleaved timing phase (bench/accuracy_timing.py, interleaved_cost below); the
-Theil–Sen slope of CPU time against samples over a configuration's own sequence (cost_per_sample) is kept in
-the CSV for comparison. The time of the n-sample point is c·n.
+machine slows far less than wall time (though still by up to ~30 %: the cores are shared; hence the
+round-robin order of bench/accuracy_sequences.py), less the per-render set-up (render_times). Cycles' cost per
+sample is not constant at these sizes (about 40 ms per 96×96 pass at 4–8 samples, 25 ms at 64–256 on one
+run), so each point keeps its own measured time rather than a fitted cost × samples; cost_per_sample (a
+Theil–Sen slope) is printed for comparison only.
 """
 
 import math
@@ -76,18 +77,12 @@ def cost_per_sample(samples, cpu_seconds):
     return max(float(np.median(slopes)), 1e-12)
 
 
-def interleaved_cost(runs):
-    """{configuration: cost per sample} from bench/accuracy_timing.py's runs: per configuration the least CPU
-    time at each of its two counts over the repeats, then (t₂ − t₁) / (n₂ − n₁)."""
-    best = {}
-    for r in runs:
-        key = (r["configuration"], r["samples"])
-        best[key] = min(best.get(key, float("inf")), r["cpu_seconds"])
-    out = {}
-    for label in {k[0] for k in best}:
-        (n1, t1), (n2, t2) = sorted((n, t) for (c, n), t in best.items() if c == label)[:2]
-        out[label] = max((t2 - t1) / (n2 - n1), 1e-12)
-    return out
+def render_times(samples, cpu_seconds):
+    """(setup, times): the per-render set-up estimated as 2·t(1) − t(2) (clamped to [0, t(1)]; the cost of
+    the first sample is then t(1) − setup) and each render's CPU time less it."""
+    t = dict(zip(samples, cpu_seconds))
+    setup = min(max(2.0 * t[1] - t[2], 0.0), t[1]) if 1 in t and 2 in t else 0.0
+    return setup, [max(c - setup, 1e-9) for c in cpu_seconds]
 
 
 def fit(samples, errs, ref_noise_fractions):

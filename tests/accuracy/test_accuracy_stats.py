@@ -66,12 +66,8 @@ def test_errors_subtract_reference_noise_and_trim():
     assert e["rrmse"] > 1.0 and e["robust"] < 0.1
 
 
-def test_interleaved_cost_takes_least_disturbed_render_per_count():
-    runs = []
-    for rep, load in enumerate((1.0, 1.6, 1.2)):       # the second round ran beside another job
-        for label, c in (("A", 0.010), ("B", 0.020)):
-            for n in (4, 32):
-                runs.append({"configuration": label, "repeat": rep, "samples": n,
-                             "cpu_seconds": load * (0.3 + c * n)})
-    cost = st.interleaved_cost(runs)
-    assert math.isclose(cost["A"], 0.010, rel_tol=1e-9) and math.isclose(cost["B"], 0.020, rel_tol=1e-9)
+def test_render_times_drop_the_setup():
+    cpu = [0.3 + 0.01 * n for n in COUNTS]
+    setup, times = st.render_times(COUNTS, cpu)
+    assert math.isclose(setup, 0.3, rel_tol=1e-9)
+    assert all(math.isclose(t, 0.01 * n, rel_tol=1e-9) for t, n in zip(times, COUNTS))
