@@ -315,7 +315,7 @@ def write_outputs(scene_names, configs, results, rows, started):
           "- **Time** is CPU time (both render threads summed; on an idle machine the wall time is about half), "
           "less the per-render set-up (export, BVH, Cycles' sync) estimated as 2·t(1) − t(2). Wall time on "
           "this shared 2-core machine follows the other jobs' load: it made the previous report show Candela "
-          "at 2.4× Cycles' time per sample on the Cornell box, where the CPU time says about 0.8×. CPU time "
+          "at 2.4× Cycles' time per sample on the Cornell box, where CPU time put it at 0.7–1.1× in three later runs. CPU time "
           "moves less, but still by up to ~30 % (the cores are shared), so all configurations of a scene "
           "render in one Blender process, round-robin — each count in turn for every configuration — and a "
           "load that comes and goes hits them alike"
