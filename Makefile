@@ -42,7 +42,7 @@ test-blender: build
 bench: build
 	$(CLEAN_ENV) $(PYTHON) bench/bench.py --build $(BUILD)
 
-# Error-vs-time report: docs/accuracy.md, docs/accuracy/*.png and measurements.csv (about 20 minutes).
+# Error-vs-time report: docs/accuracy.md, docs/accuracy/*.png and measurements.csv (about 10 minutes idle, < 30 loaded).
 accuracy: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD)
 

@@ -1,20 +1,25 @@
 """`make accuracy`: what accuracy costs in time, per scene, per technique, against Cycles.
 
-    /usr/bin/python3.11 bench/accuracy.py [--quick] [--out DIR] [--docs docs] [--size 128] [--max-samples 256]
+    /usr/bin/python3.11 bench/accuracy.py [--quick] [--out DIR] [--docs docs] [--size 96] [--max-samples 256] [--scenes A,B] [--configs 'Cycles,Candela PATH SOBOL']
 
 For every scene (examples/scenes.py) and every configuration — Cycles, and Candela with each integrator and
-each sampler the native module offers — it renders at 1, 2, 4, … samples per pixel, measures the render time
-(set-up excluded, see bench/accuracy_render.py) and the error against a high-sample reference of the SAME
-engine (rendered once and cached in OUT/cache, keyed by scene, size, engine and the renderer's build), and
-writes:
-  DOCS/accuracy.md          a table per scene: time to reach 5 % / 2 % / 1 % relative error, the fitted
-                            convergence slope, and the ratio to Cycles' time for the same error
-  DOCS/accuracy/SCENE.png   log-log error-vs-time plots, one line per configuration, Cycles included
-  DOCS/accuracy/measurements.csv   every measurement
-Error: relative RMSE = √(mean over pixels of (L − L_ref)²) / mean(L_ref) on luminance, with the reference's own
-estimated noise (a 16× longer render) subtracted; relative MSE = mean((L − L_ref)² / (L_ref² + 0.01)).
-All times come from one run on one machine; the report says which and when. --quick (for `make test`) renders
-small images at few samples into OUT only, to check the pipeline, not the numbers.
+each sampler the native module offers — it renders at 1, 2, 4, … samples per pixel, measures the CPU time of
+every render (all configurations of a scene round-robin in one Blender process: bench/accuracy_sequences.py)
+and the error against a high-sample reference of the SAME engine
+(rendered once as two independent halves and cached in OUT/cache, keyed by scene, size, engine and the
+renderer's build), and writes:
+  DOCS/accuracy.md          a table per scene: time to reach 5 % / 2 % / 1 % relative RMSE (measured, or
+                            extrapolated within a stated bound), the fitted slope ± its standard error, the ratio
+                            to Cycles' time, time and MSE at equal samples against Cycles, relative
+                            MSE and a trimmed relative RMSE; the method is written into the report
+  DOCS/accuracy/SCENE.png   log-log error-vs-time plots (relative RMSE, trimmed dotted; relative MSE), one line
+                            per configuration, Cycles included
+  DOCS/accuracy/measurements.csv   every measurement (CPU and wall times, all metrics)
+The statistics (metrics, set-up, fits, the extrapolation bound) are in bench/accuracy_stats.py.
+All times come from one run on one machine; the report says which and when. The defaults (96 px, up to 256
+samples, references of 2048) take about 10 minutes on an idle 2-core machine and stay under 30 under load.
+--quick (for `make test`) renders 32 px images at up to 8 samples into OUT only, to check the pipeline (about
+half a minute), not the numbers.
 """
 
 import argparse
@@ -30,7 +35,9 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import accuracy_stats as stats  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TARGETS = (0.05, 0.02, 0.01)
@@ -42,11 +49,13 @@ def parse_args():
     ap.add_argument("--build", default=str(ROOT / "build"))
     ap.add_argument("--out", default=None, help="work directory (default BUILD/accuracy or BUILD/accuracy-quick)")
     ap.add_argument("--docs", default=str(ROOT / "docs"), help="where accuracy.md and the plots go")
-    ap.add_argument("--size", type=int, default=128)
+    ap.add_argument("--size", type=int, default=96)
     ap.add_argument("--max-samples", type=int, default=256)
-    ap.add_argument("--ref-factor", type=int, default=16, help="reference samples = factor × max samples")
+    ap.add_argument("--ref-factor", type=int, default=8, help="reference samples = factor × max samples")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--scenes", default=None, help="comma-separated subset of the scenes")
+    ap.add_argument("--configs", default=None, help="comma-separated subset of the configuration labels")
+    ap.add_argument("--repeats", type=int, default=1, help="renders per configuration and count (least CPU kept)")
     a = ap.parse_args()
     if a.quick:
         a.size, a.max_samples, a.ref_factor = 32, 8, 8
@@ -55,9 +64,9 @@ def parse_args():
     return a
 
 
-def run_blender(args, log):
+def run_blender(args, log, script="accuracy_render.py", marker="ACCURACY_JSON "):
     cmd = [str(ROOT / "bin" / "candela-blender"), "-b", "--factory-startup", "-noaudio", "--python-exit-code", "1",
-           "--python", str(ROOT / "bench" / "accuracy_render.py"), "--", *args]
+           "--python", str(ROOT / "bench" / script), "--", *args]
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV")}
     env["CANDELA_SCRIPTS_DIR"] = str(Path(ARGS.build) / "scripts")
     proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
@@ -65,8 +74,8 @@ def run_blender(args, log):
     if proc.returncode != 0:
         raise RuntimeError(f"Blender failed ({proc.returncode}); see {log}")
     for line in proc.stdout.splitlines():
-        if line.startswith("ACCURACY_JSON "):
-            return json.loads(line[len("ACCURACY_JSON "):])
+        if line.startswith(marker):
+            return json.loads(line[len(marker):])
     raise RuntimeError(f"no result from Blender; see {log}")
 
 
@@ -74,10 +83,6 @@ def native_module():
     sys.path.insert(0, str(Path(ARGS.build) / "scripts" / "addons" / "candela"))
     import _native
     return _native
-
-
-def luminance(rgba):
-    return 0.2126 * rgba[..., 0] + 0.7152 * rgba[..., 1] + 0.0722 * rgba[..., 2]
 
 
 def configurations(native):
@@ -104,56 +109,20 @@ def build_fingerprint():
 
 
 def reference(scene, engine, ref_samples):
-    """A cached high-sample reference (luminance) and its estimated per-pixel noise variance."""
+    """A cached high-sample reference: the luminance of two independent half renders (accuracy_stats.errors
+    averages them and uses their difference as the reference's own noise)."""
     key = f"{scene}_{engine}_{ARGS.size}_{ref_samples}_{build_fingerprint() if engine == 'CANDELA' else 'cycles34'}"
     cache = ARGS.out / "cache"
     cache.mkdir(parents=True, exist_ok=True)
     files = [cache / f"{key}_{i}.exr" for i in (0, 1)]
     if not all(f.exists() for f in files):
-        # Two independent halves: their difference estimates the reference's own noise.
         for i, f in enumerate(files):
             res = run_blender(["--scene", scene, "--engine", engine, "--counts", str(ref_samples // 2),
                                "--size", str(ARGS.size), "--threads", str(ARGS.threads), "--seed", str(1000 + i),
                                "--out", str(cache), "--tag", f"{key}_part{i}"], cache / f"{key}_{i}.log")
             os.replace(res["runs"][0]["exr"], f)
     native = native_module()
-    a, b = (luminance(native.read_exr(str(f))) for f in files)
-    ref = 0.5 * (a + b)
-    noise_var = float(np.mean((a - b) ** 2) / 4.0)   # Var(mean of halves) = Var(a − b)/4 per pixel
-    return ref, noise_var
-
-
-def errors(image, ref, ref_noise_var):
-    d2 = (image - ref) ** 2
-    rmse = math.sqrt(max(float(np.mean(d2)) - ref_noise_var, 0.0)) / max(float(np.mean(ref)), 1e-12)
-    rel_mse = float(np.mean(d2 / (ref ** 2 + 1e-2)))
-    return rmse, rel_mse
-
-
-def fit(points):
-    """Least-squares line through log(error) vs log(time) for the points with samples ≥ 4: (slope, intercept)."""
-    pts = [(t, e) for n, t, e in points if n >= 4 and t > 0 and e > 0]
-    if len(pts) < 2:
-        return None
-    x = np.log([p[0] for p in pts])
-    y = np.log([p[1] for p in pts])
-    slope, intercept = np.polyfit(x, y, 1)
-    return float(slope), float(intercept)
-
-
-def time_to(target, points, line):
-    """Seconds to reach `target` relative RMSE: interpolated between measurements, else extrapolated from the
-    fit (marked by the caller)."""
-    for (n0, t0, e0), (n1, t1, e1) in zip(points, points[1:]):
-        if e0 >= target >= e1 and e0 > 0 and e1 > 0 and t0 > 0:
-            f = (math.log(target) - math.log(e0)) / (math.log(e1) - math.log(e0))
-            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), False
-    if points and points[0][2] <= target:
-        return points[0][1], False
-    if line is None or line[0] >= 0:
-        return None, True
-    slope, intercept = line
-    return math.exp((math.log(target) - intercept) / slope), True
+    return tuple(stats.luminance(native.read_exr(str(f))) for f in files)
 
 
 def machine():
@@ -168,6 +137,50 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
+def sequences(scene, configs, counts):
+    """Render every configuration at every count, round-robin in one Blender process
+    (bench/accuracy_sequences.py): {label: [run, …]} with the least CPU time over the repeats."""
+    args = ["--scene", scene, "--size", str(ARGS.size), "--threads", str(ARGS.threads), "--counts",
+            ",".join(map(str, counts)), "--repeats", str(ARGS.repeats), "--out", str(ARGS.out / "renders")]
+    for label, engine, settings in configs:
+        args += ["--config", f"{label}|{engine}|{','.join(settings)}"]
+    res = run_blender(args, ARGS.out / f"{scene}_sequences.log", "accuracy_sequences.py", "ACCURACY_SEQUENCES_JSON ")
+    best = {}
+    for run in res["runs"]:
+        key = (run["configuration"], run["samples"])
+        if key not in best or run["cpu_seconds"] < best[key]["cpu_seconds"]:
+            best[key] = run
+    return {label: [best[(label, n)] for n in counts] for label, _, _ in configs}
+
+
+def measure(scene, label, runs, ref, rows):
+    """One configuration's points as a dict of lists (samples, cpu, time, the metrics …)."""
+    native = native_module()
+    metrics = ("rrmse", "relmse", "robust", "ref_noise_fraction", "robust_ref_noise_fraction", "top_share")
+    p = {k: [] for k in ("samples", "cpu", "wall", *metrics)}
+    for run in runs:
+        err = stats.errors(stats.luminance(native.read_exr(run["exr"])), *ref)
+        p["samples"].append(run["samples"])
+        p["cpu"].append(run["cpu_seconds"])
+        p["wall"].append(run["wall_seconds"])
+        for k in metrics:
+            p[k].append(err[k])
+    p["setup"], p["time"] = stats.render_times(p["samples"], p["cpu"])
+    p["cost_sequence"] = stats.cost_per_sample(p["samples"], p["cpu"])
+    for i, n in enumerate(p["samples"]):
+        rows.append({"scene": scene, "configuration": label, "samples": n,
+                     "cpu_seconds": f"{p['cpu'][i]:.6f}", "wall_seconds": f"{p['wall'][i]:.6f}",
+                     "setup_cpu_seconds": f"{p['setup']:.6f}", "time_seconds": f"{p['time'][i]:.6f}",
+                     "relative_rmse": f"{p['rrmse'][i]:.6g}", "relative_mse": f"{p['relmse'][i]:.6g}",
+                     "trimmed_relative_rmse": f"{p['robust'][i]:.6g}",
+                     "worst_pixels_error_share": f"{p['top_share'][i]:.4g}",
+                     "reference_noise_fraction": f"{p['ref_noise_fraction'][i]:.4g}"})
+    print(f"{scene:12s} {label:28s} {1e3 * p['time'][-1] / p['samples'][-1]:.2f} ms/spp at {p['samples'][-1]} "
+          f"(Theil-Sen {1e3 * p['cost_sequence']:.2f})  " +
+          "  ".join(f"{n}:{e:.3f}/{r:.3f}" for n, e, r in zip(p["samples"], p["rrmse"], p["robust"])), flush=True)
+    return p
+
+
 def main():
     global ARGS
     ARGS = parse_args()
@@ -178,32 +191,96 @@ def main():
     configs = configurations(native)
     if ARGS.quick:
         configs = configs[:2] + configs[-1:] if len(configs) > 3 else configs
+    if ARGS.configs:
+        wanted = ARGS.configs.split(",")
+        configs = [c for c in configs if c[0] in wanted]
     ARGS.out.mkdir(parents=True, exist_ok=True)
     rows, results = [], {}
     for scene in scene_names:
-        refs = {}
-        for label, engine, settings in configs:
-            if engine not in refs:
-                refs[engine] = reference(scene, engine, ARGS.ref_factor * ARGS.max_samples)
-            ref, ref_noise = refs[engine]
-            tag = f"{scene}_{label.replace(' ', '_')}"
-            args = ["--scene", scene, "--engine", engine, "--counts", ",".join(map(str, counts)), "--size",
-                    str(ARGS.size), "--threads", str(ARGS.threads), "--out", str(ARGS.out / "renders"), "--tag", tag]
-            for s in settings:
-                args += ["--set", s]
-            res = run_blender(args, ARGS.out / f"{tag}.log")
-            points = []
-            for run in res["runs"]:
-                rmse, rel_mse = errors(luminance(native.read_exr(run["exr"])), ref, ref_noise)
-                points.append((run["samples"], run["seconds"], rmse))
-                rows.append({"scene": scene, "configuration": label, "samples": run["samples"],
-                             "seconds": f"{run['seconds']:.6f}", "relative_rmse": f"{rmse:.6f}",
-                             "relative_mse": f"{rel_mse:.6g}"})
-            results[(scene, label)] = points
-            print(f"{scene:12s} {label:28s} " + "  ".join(f"{n}:{e:.3f}@{t:.2f}s" for n, t, e in points), flush=True)
+        refs = {engine: reference(scene, engine, ARGS.ref_factor * ARGS.max_samples)
+                for engine in dict.fromkeys(engine for _, engine, _ in configs)}
+        runs = sequences(scene, configs, counts)
+        for label, engine, _ in configs:
+            results[(scene, label)] = measure(scene, label, runs[label], refs[engine], rows)
     write_outputs(scene_names, configs, results, rows, started)
     print(f"accuracy: done in {time.time() - started:.0f} s; results in {ARGS.out}" +
           ("" if ARGS.quick else f" and {ARGS.docs}/accuracy.md"))
+
+
+def cell(t, how):
+    if t is None:
+        return "—"
+    return {"measured": f"{t:.3g} s", "extrapolated": f"~{t:.3g} s", "beyond": f"> {t:.3g} s"}[how]
+
+
+def ratio(a, b):
+    return "—" if a is None or b is None or b <= 0 else f"{a / b:.2f}×"
+
+
+def target_cells(p, metric, cyc, cyc_line):
+    """Time to each target, the slope, and the time ratio to Cycles at 2 % for one metric."""
+    noise = p["ref_noise_fraction" if metric == "rrmse" else "robust_ref_noise_fraction"]
+    line = stats.fit(p["samples"], p[metric], noise)
+    cells = [cell(*stats.time_to(x, p["samples"], p["time"], p[metric], line)) for x in TARGETS]
+    slope = "—" if line is None else (f"{line['slope']:.2f} ± {line['sigma']:.2f}" +
+                                      ("" if stats.fit_is_usable(line) else " (not used)"))
+    t2, how2 = stats.time_to(0.02, p["samples"], p["time"], p[metric], line)
+    time_ratio = "—"
+    if cyc:
+        t_cyc, how_cyc = stats.time_to(0.02, cyc["samples"], cyc["time"], cyc[metric], cyc_line)
+        if how2 != "beyond" and how_cyc != "beyond":   # both measured or inside the extrapolation bound
+            time_ratio = ratio(t2, t_cyc)
+    return cells, slope, time_ratio
+
+
+def scene_tables(scene, configs, results, n_max):
+    """Two markdown tables for one scene: relative RMSE (the targets, ratios to Cycles, the other metrics at
+    the largest count) and the trimmed relative RMSE (the same targets on the robust figure)."""
+    cyc = results.get((scene, "Cycles"))
+    fits = {m: stats.fit(cyc["samples"], cyc[m], cyc[f]) if cyc else None
+            for m, f in (("rrmse", "ref_noise_fraction"), ("robust", "robust_ref_noise_fraction"))}
+    main = [f"| configuration | 5 % | 2 % | 1 % | slope ± σ | time vs Cycles at 2 % | time vs Cycles at {n_max} spp "
+            f"| rel. RMSE at {n_max} spp | MSE vs Cycles at {n_max} spp | rel. MSE at {n_max} spp "
+            f"| worst {100 * stats.TRIM:g} % of pixels' share of the squared error |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    robust = [f"Trimmed relative RMSE ({100 * stats.TRIM:g} % of pixels with the largest errors dropped):", "",
+              "| configuration | 5 % | 2 % | 1 % | slope ± σ | time vs Cycles at 2 % "
+              f"| trimmed rel. RMSE at {n_max} spp | its MSE vs Cycles |", "|---|---|---|---|---|---|---|---|"]
+    for label, _, _ in configs:
+        p = results[(scene, label)]
+        cells, slope, time_ratio = target_cells(p, "rrmse", cyc, fits["rrmse"])
+        mse_ratio = ratio(p["rrmse"][-1] ** 2, cyc["rrmse"][-1] ** 2) if cyc else "—"
+        main.append(f"| {label} | {' | '.join(cells)} | {slope} | {time_ratio} | "
+                    f"{ratio(p['time'][-1], cyc['time'][-1]) if cyc else '—'} | {p['rrmse'][-1]:.3g} | {mse_ratio} | "
+                    f"{p['relmse'][-1]:.3g} | {100 * p['top_share'][-1]:.0f} % |")
+        cells, slope, time_ratio = target_cells(p, "robust", cyc, fits["robust"])
+        mse_ratio = ratio(p["robust"][-1] ** 2, cyc["robust"][-1] ** 2) if cyc else "—"
+        robust.append(f"| {label} | {' | '.join(cells)} | {slope} | {time_ratio} | {p['robust'][-1]:.3g} | "
+                      f"{mse_ratio} |")
+    return main + [""] + robust
+
+
+def plot(scene, configs, results, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
+    for label, _, _ in configs:
+        p = results[(scene, label)]
+        colour = "black" if label == "Cycles" else None
+        (h,) = axes[0].loglog(p["time"], p["rrmse"], marker="o", ms=3, label=label, color=colour)
+        axes[0].loglog(p["time"], p["robust"], ls=":", lw=1, color=h.get_color())
+        axes[1].loglog(p["time"], p["relmse"], marker="o", ms=3, label=label, color=h.get_color())
+    axes[0].set_ylabel(f"relative RMSE (dotted: trimmed, {100 * stats.TRIM:g} % largest errors dropped)")
+    axes[1].set_ylabel("relative MSE")
+    for ax in axes:
+        ax.set_xlabel("CPU time [s], set-up excluded")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[1].legend(fontsize=7)
+    fig.suptitle(scene.replace("_", " "))
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
 
 
 def write_outputs(scene_names, configs, results, rows, started):
@@ -214,51 +291,55 @@ def write_outputs(scene_names, configs, results, rows, started):
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     when = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+    n_max = ARGS.max_samples
     md = ["# What accuracy costs in time", "",
-          "Generated by `make accuracy` (`bench/accuracy.py`); do not edit by hand.", "",
+          "Generated by `make accuracy` (`bench/accuracy.py`, statistics in `bench/accuracy_stats.py`); do not "
+          "edit by hand.", "",
           f"Measured on {machine()}, {ARGS.threads} render threads, {when}, in one run: every number below comes "
           "from the same machine and session. Headline figures are ratios, not seconds.", "",
-          f"Images {ARGS.size} px wide; 1 to {ARGS.max_samples} samples per pixel; error = relative RMSE of "
-          f"luminance against a {ARGS.ref_factor * ARGS.max_samples}-sample reference of the same engine. "
-          "Times exclude scene export and BVH build. *Slope* is the fitted exponent of error ∝ time^slope "
-          "(−0.5 for plain Monte Carlo). A `~` marks a time extrapolated from that fit; `—` means not reached.",
-          ""]
+          "## Method", "",
+          f"Images {ARGS.size} px wide, rendered at 1, 2, 4 … {n_max} samples per pixel (one progressive "
+          f"sequence per configuration: fixed seed, so the counts share their first samples); references of "
+          f"{ARGS.ref_factor * n_max} samples, rendered once per engine as two independent halves.", "",
+          "- **Error** is on luminance against the reference of the same engine, with the reference's own noise "
+          "(estimated from the difference of its halves) subtracted. *rel. RMSE* = √mean((L − L_ref)²) / "
+          "mean(L_ref) is the error the targets 5 / 2 / 1 % refer to; *rel. MSE* = mean((L − L_ref)² / "
+          f"(L_ref² + {stats.EPS:g})) weighs every pixel by its own brightness. Where a few pixels carry most "
+          "of the squared error (emitters seen directly or in mirrors: their edges, and fireflies), one "
+          "image's rel. RMSE jumps up and down between sample counts and says little about the rest of the "
+          f"image; the column *worst {100 * stats.TRIM:g} % of pixels' share* says how much that is the case. "
+          f"The second table per scene is the *trimmed rel. RMSE*, without the {100 * stats.TRIM:g} % of "
+          "pixels with the largest errors: a robust figure for heavy-tailed scenes, not an error bound (it "
+          "leaves out the fireflies by construction).",
+          "- **Time** is CPU time (both render threads summed; on an idle machine the wall time is about half), "
+          "less the per-render set-up (export, BVH, Cycles' sync) estimated as 2·t(1) − t(2). Wall time on "
+          "this shared 2-core machine follows the other jobs' load: it made the previous report show Candela "
+          "at 2.4× Cycles' time per sample on the Cornell box, where CPU time put it at 0.7–1.1× in three later runs. CPU time "
+          "moves less, but still by up to ~30 % (the cores are shared), so all configurations of a scene "
+          "render in one Blender process, round-robin — each count in turn for every configuration — and a "
+          "load that comes and goes hits them alike"
+          + (f"; each render is repeated {ARGS.repeats}× and the least CPU time kept" if ARGS.repeats > 1 else "")
+          + ". The CSV also has every render's wall time.",
+          f"- **Slope** is the least-squares exponent of rel. RMSE ∝ samples^s (= time^s), fitted on the counts "
+          f"≥ {stats.MIN_SAMPLES_FIT} where the reference's noise is under {100 * stats.REF_NOISE_MAX:g} % of "
+          "the raw squared error, with its standard error σ (a lower bound: the points are nested). −0.5 is "
+          "plain Monte Carlo. A fit with fewer than 3 such points, a slope outside −1.5 … −0.2 or σ > 0.15 is "
+          "marked *not used* and never extrapolated.",
+          "- **Extrapolation** past the last measurement follows the fitted line for at most a factor F_max "
+          "in time. A slope error Δs changes an extrapolated time by F^(Δs/|s|); asking for at most "
+          f"{stats.TIME_TOLERANCE:g}× both for the fit's σ and for a change of regime of Δs = "
+          f"{stats.REGIME_DS:g} at s = −0.5 gives F_max = min({stats.F_CAP:.1f}, "
+          f"{stats.TIME_TOLERANCE:g}^(|s|/σ)). `~` marks such a time; `> t` means not reached within it "
+          "(t = the last measured time); `—` no usable value.",
+          "- **Ratios to Cycles**: the time ratio at 2 % only where both times are measured or within the "
+          f"bound; the *time* and the *MSE* at {n_max} samples always (for slopes near −0.5, the time ratio "
+          "at equal error is about their product).", ""]
     for scene in scene_names:
-        fig, ax = plt.subplots(figsize=(6.4, 4.4))
-        cyc_points = results.get((scene, "Cycles"))
-        cyc_line = fit(cyc_points) if cyc_points else None
-        md += [f"## {scene.replace('_', ' ').title()}", "", f"![{scene}](accuracy/{scene}.png)", "",
-               "| configuration | 5 % | 2 % | 1 % | slope | vs Cycles at 2 % |", "|---|---|---|---|---|---|"]
-        for label, _, _ in configs:
-            points = results[(scene, label)]
-            line = fit(points)
-            ax.loglog([p[1] for p in points], [p[2] for p in points], marker="o", ms=3, label=label,
-                      color="black" if label == "Cycles" else None)
-            cells = []
-            for target in TARGETS:
-                t, extrapolated = time_to(target, points, line)
-                cells.append("—" if t is None else f"{'~' if extrapolated else ''}{t:.3g} s")
-            t2, _ = time_to(0.02, points, line)
-            tc, _ = time_to(0.02, cyc_points, cyc_line) if cyc_points else (None, True)
-            ratio = "—" if not t2 or not tc else f"{t2 / tc:.2f}×"
-            md.append(f"| {label} | {' | '.join(cells)} | {line[0]:.2f} |" if line else
-                      f"| {label} | {' | '.join(cells)} | — |")
-            md[-1] += f" {ratio} |"
-        ax.set_xlabel("render time [s]")
-        ax.set_ylabel("relative RMSE")
-        ax.set_title(scene.replace("_", " "))
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        fig.savefig(plots / f"{scene}.png", dpi=110)
-        plt.close(fig)
+        md += [f"## {scene.replace('_', ' ').title()}", "", f"![{scene}](accuracy/{scene}.png)", ""]
+        md += scene_tables(scene, configs, results, n_max)
         md.append("")
+        plot(scene, configs, results, plots / f"{scene}.png")
     md += ["Raw measurements: [accuracy/measurements.csv](accuracy/measurements.csv). "
            f"The run took {time.time() - started:.0f} s.", ""]
     (docs / "accuracy.md").write_text("\n".join(md))

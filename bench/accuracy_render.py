@@ -9,10 +9,14 @@ With `--variant TAG:key=value,key=value` (repeatable; Candela only) it renders s
 the scene in the same process, each at every count, into TAG_N.exr; each variant starts from the scene's
 settings (and --set), so variants do not leak into each other (examples/sampling_gallery.py uses this).
 
-Times exclude scene set-up, so that they measure the sampling itself:
-  Candela: the native render time of each render (session.stats()["render_seconds"]: no export, no BVH build);
-  Cycles:  the wall time of each render minus a set-up estimate, 2·t(1) − t(2) from two extra warm-up
-           renders at 1 and 2 samples (Cycles syncs and builds its BVH again for every render).
+Each run reports three times:
+  seconds:     set-up excluded, so that it measures the sampling itself. Candela: the native render time
+               (session.stats()["render_seconds"]: no export, no BVH build); Cycles: the wall time minus a
+               set-up estimate, 2·t(1) − t(2) from two extra warm-up renders at 1 and 2 samples (Cycles syncs
+               and builds its BVH again for every render).
+  wall_seconds: the wall time of bpy.ops.render.render.
+  cpu_seconds:  the process CPU time (all threads) of bpy.ops.render.render. On a shared machine this is the
+               stable one: wall time depends on what else runs (bench/accuracy.py fits its cost per sample).
 """
 
 import argparse
@@ -68,15 +72,15 @@ def render(scene, engine, samples, path):
     else:
         scene.cycles.samples = samples
     scene.render.filepath = path
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     result = bpy.ops.render.render(write_still=True)
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     if "FINISHED" not in result or not os.path.exists(path):
         raise RuntimeError(f"{engine} render of {samples} samples failed")
     if engine == "CANDELA":
         stats = sys.modules["candela.render_loop"].last_render_stats
-        return wall, float(stats["render_seconds"])
-    return wall, None
+        return wall, cpu, float(stats["render_seconds"])
+    return wall, cpu, None
 
 
 def main():
@@ -111,9 +115,10 @@ def main():
             setattr(scene.candela, key, value)
         for n in counts:
             path = os.path.join(a.out, f"{tag}_{n}.exr")
-            wall, native = render(scene, a.engine, n, path)
+            wall, cpu, native = render(scene, a.engine, n, path)
             seconds = native if native is not None else max(wall - setup, 1e-6)
-            runs.append({"samples": n, "seconds": seconds, "wall_seconds": wall, "exr": path, "variant": tag})
+            runs.append({"samples": n, "seconds": seconds, "wall_seconds": wall, "cpu_seconds": cpu, "exr": path,
+                         "variant": tag})
     print("ACCURACY_JSON " + json.dumps({"scene": a.scene, "engine": a.engine, "settings": a.set,
                                          "size": [scene.render.resolution_x, scene.render.resolution_y],
                                          "setup_seconds": setup, "runs": runs}), flush=True)
