@@ -97,6 +97,17 @@ public:
     float selection_pmf(uint32_t i) const { return m_selection.pmf(i); }
 
     const std::vector<uint32_t>& area_lights() const { return m_area_lights; }
+
+    /// A constant world colour is not a light: next-event estimation never samples it, and rays that escape find
+    /// it with weight 1. Uniform directions (its light sampling) would spend shadow rays on every direction,
+    /// below the horizon too, while BSDF sampling already importance-samples a uniform environment by the
+    /// BSDF; and every shadow ray spent on a dim sky is taken from the lights that matter (Blender's default world
+    /// is a constant grey). Cycles 3.4 does the same: it turns background MIS off for a background without
+    /// spatial variation. A varying world (an environment map) is a WorldLight and is light-sampled.
+    void set_background(const Color& radiance) { m_background = radiance; }
+    const Color& background() const { return m_background; }
+
+    /// The light-sampled world (an environment map), if any.
     int world_light() const { return m_world; }
     const WorldLight* world() const {
         return m_world < 0 ? nullptr : &std::get<WorldLight>(m_lights[m_world]);
@@ -106,6 +117,7 @@ private:
     std::vector<Light> m_lights;
     std::vector<uint32_t> m_area_lights;
     int m_world = -1;
+    Color m_background{0.f};
     Distribution1D m_selection;
     LightPdfMode m_pdf_mode = LightPdfMode::SolidAngle;
 };

@@ -376,7 +376,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         const float* c = w->data<float>();
         const Color col(c[0], c[1], c[2]);
         if (min_component(col) < 0.f) throw InvalidScene("world_color must not be negative");
-        if (!is_black(col) && m_world_program < 0) m_lights.add(WorldLight{col, m_radius, nullptr});
+        if (m_world_program < 0) m_lights.set_background(col);
     }
     if (m_world_program >= 0) add_environment();
     m_lights.finalize(m_radius);

@@ -105,11 +105,10 @@ Color Scene::emission(uint32_t id, const Vec3& p, const Vec3& ng, float b1, floa
 
 void Scene::add_environment() {
     const auto program = uint32_t(m_world_program), reg = uint32_t(m_world_reg);
-    if (!m_shaders->varying(program, reg)) {  // a constant after all: the uniform world light
+    if (!m_shaders->varying(program, reg)) {  // a constant after all: the background colour, not a light
         ShaderRegisters regs(m_shaders->program_size(program));
         m_shaders->evaluate(program, ShadingInputs::world(Vec3(0.f, 0.f, 1.f)), regs.data());
-        const Color c = vmax(regs[reg], Color(0.f));
-        if (!is_black(c)) m_lights.add(WorldLight{c, m_radius, nullptr});
+        m_lights.set_background(vmax(regs[reg], Color(0.f)));
         return;
     }
     auto env = std::make_shared<const EnvironmentMap>(m_shaders, program, reg, resolve_thread_count(m_threads));

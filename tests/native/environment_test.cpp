@@ -12,6 +12,7 @@
 #include "core/math.h"
 #include "core/rng.h"
 #include "lights/environment_light.h"
+#include "scene/scene.h"
 #include "sampling/distribution_2d.h"
 #include "texture/node_math.h"
 #include "shader_test_helpers.h"
@@ -216,6 +217,27 @@ TEST(EnvironmentFurnace, ConstantImageEqualsTheConstantWorldColour) {
     const double sigma = std::sqrt(ref.standard_error * ref.standard_error + env.standard_error * env.standard_error);
     EXPECT_NEAR(env.mean_rgb, ref.mean_rgb, 4.0 * sigma + 1e-3);
     EXPECT_NEAR(env.mean_rgb, 0.3, 4.0 * env.standard_error + 2e-3);
+}
+
+// A constant world colour is not light-sampled (LightSet::set_background): the light set stays empty, so no
+// shadow ray is spent on it, and every estimator finds it through escaping rays with weight 1. A diffuse quad of
+// albedo 0.8 facing up under a uniform sky of radiance 0.5, nothing above it: Lo = ρ·L = 0.4 exactly, for
+// BSDF_ONLY, LIGHT_ONLY (weight 1 because light sampling cannot produce it) and MIS alike; 4σ of each render.
+TEST(EnvironmentFurnace, ConstantWorldIsNotALightAndEveryEstimatorFindsIt) {
+    MeshBuilder m;
+    const uint32_t mat = m.add_material(Color(0.8f), Color(0.f));
+    m.add_instance(m.add_quad_z(-10, 10, -10, 10, -2, mat));
+    m.world_color = {0.5f, 0.5f, 0.5f};
+    const PreparedScene scene(m.arrays(), basic_params(8, 8, 64, 0));
+    EXPECT_TRUE(scene.scene().lights().empty());
+    EXPECT_EQ(scene.scene().lights().world_light(), -1);
+    EXPECT_FLOAT_EQ(scene.scene().lights().background().y, 0.5f);
+    for (const char* mode : {"BSDF_ONLY", "LIGHT_ONLY", "MIS"}) {
+        Params p;
+        p.set("light_sampling", std::string(mode));
+        const RenderResult r = scene.render(p);
+        EXPECT_NEAR(r.mean_rgb, 0.4, 4.0 * r.standard_error + 1e-6) << mode << ", σ " << r.standard_error;
+    }
 }
 
 TEST(EnvironmentFurnace, MisLightOnlyAndBsdfOnlyAgree) {

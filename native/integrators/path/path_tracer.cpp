@@ -119,6 +119,8 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
                 *alpha = 0.f;
             } else if (const WorldLight* world = lights.world()) {
                 add_emission(world->Le(ray.d), light_pdf(uint32_t(lights.world_light()), k_inf));
+            } else if (!is_black(lights.background())) {
+                add_emission(lights.background(), 0.f);  // a constant world: never light-sampled, weight 1
             }
             return;
         }
