@@ -33,7 +33,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "bench"))
-import accuracy  # noqa: E402  (run_blender, reference, errors, luminance, native_module, machine)
+import accuracy  # noqa: E402  (run_blender, reference, native_module, build_fingerprint, machine)
+import accuracy_stats  # noqa: E402  (luminance)
 
 # Each section: one setting swept over its values on one scene at one sample count; `default` is Candela's
 # default value (the efficiency baseline). Values may be (label, {setting: value, ...}) for combined settings.
@@ -144,7 +145,7 @@ def display_error(rgba, halves):
     """Relative RMSE of the display-clipped luminance against the mean of the reference halves, minus the
     reference's own noise: Var(mean of halves) = E[(a − b)²]/4 per pixel."""
     def shown(img):
-        return np.clip(accuracy.luminance(img), 0.0, 1.0)
+        return np.clip(accuracy_stats.luminance(img), 0.0, 1.0)
     a, b = shown(halves[0]), shown(halves[1])
     ref = 0.5 * (a + b)
     mse = float(np.mean((shown(rgba) - ref) ** 2)) - float(np.mean((a - b) ** 2)) / 4.0
