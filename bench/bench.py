@@ -180,6 +180,19 @@ def rate(res, s1, s2):
     return res["width"] * res["height"] * (s2 - s1) / (t2 - t1)
 
 
+def cpu_rate(res, s1, s2):
+    """Samples per CPU-second (all threads), from the least CPU time at s1 and s2; None if not measurable.
+    CPU time leaves out what the host gives to other guests (steal time), which makes wall time on a shared
+    virtual machine swing by up to 2x between minutes; the ratio of two engines' CPU rates is their ratio of work
+    per sample."""
+    if not res or "best_cpu_seconds" not in res:
+        return None
+    c1, c2 = res["best_cpu_seconds"].get(str(s1)), res["best_cpu_seconds"].get(str(s2))
+    if c1 is None or c2 is None or c2 <= c1:
+        return None
+    return res["width"] * res["height"] * (s2 - s1) / (c2 - c1)
+
+
 def pt_ray_rate(res, s1, s2):
     """Rays per second of Candela's path tracer: from the ray counts and the same timing differences."""
     if not res or "rays" not in res:
@@ -368,6 +381,10 @@ def main():
     eq_rate = rate(report["engines"].get("CANDELA_POWER"), s1, s2)
     default_ratio = can_rate / cyc_rate if can_rate and cyc_rate else None
     equal_ratio = eq_rate / cyc_rate if eq_rate and cyc_rate else None
+    cyc_cpu, can_cpu = cpu_rate(cyc, s1, s2), cpu_rate(can, s1, s2)
+    eq_cpu = cpu_rate(report["engines"].get("CANDELA_POWER"), s1, s2)
+    default_cpu_ratio = can_cpu / cyc_cpu if can_cpu and cyc_cpu else None
+    equal_cpu_ratio = eq_cpu / cyc_cpu if eq_cpu and cyc_cpu else None
     # The target is judged at equal settings (the same light selection as Cycles 3.4) when that run exists.
     speed_ratio = equal_ratio if equal_ratio is not None else default_ratio
     cyc_mean = cyc["images"][str(s2)]["mean"] if cyc else None
@@ -397,6 +414,8 @@ def main():
         "candela_samples_per_second": can_rate,
         "candela_power_samples_per_second": eq_rate,
         "speed_ratio_defaults": default_ratio, "speed_ratio_equal_light_selection": equal_ratio,
+        "cpu_samples_per_second": {"CYCLES": cyc_cpu, "CANDELA": can_cpu, "CANDELA_POWER": eq_cpu},
+        "cpu_speed_ratio_defaults": default_cpu_ratio, "cpu_speed_ratio_equal_light_selection": equal_cpu_ratio,
         "speed_ratio": speed_ratio, "speed_target": SPEED_TARGET, "speed_pass": speed_ok,
         "cycles_mean": cyc_mean, "candela_mean": can_mean,
         "brightness_ratio": bright_ratio, "brightness_ratio_rgb": per_channel,
@@ -414,6 +433,11 @@ def main():
     print(f"Cycles  samples/s          {fmt_rate(cyc_rate)}")
     print(f"Candela samples/s          {fmt_rate(can_rate)}"
           + (f"   (native stats at S2: {fmt_rate(native_sps)})" if native_sps else ""))
+    if cyc_cpu and can_cpu:
+        print(f"per CPU-second (all threads; leaves out other guests' steal time): Cycles {fmt_rate(cyc_cpu)}, "
+              f"Candela {fmt_rate(can_cpu)}" + (f", Candela ∝ power {fmt_rate(eq_cpu)}" if eq_cpu else ""))
+        print(f"CPU-time speed ratio Candela/Cycles: defaults {fmt(default_cpu_ratio)}, "
+              f"equal light selection {fmt(equal_cpu_ratio)}")
     if eq_rate:
         print(f"Candela samples/s, light selection ∝ power as Cycles 3.4   {fmt_rate(eq_rate)}")
         print(f"speed ratio Candela/Cycles at Candela's defaults (light tree)   {fmt(default_ratio)}")
