@@ -281,49 +281,40 @@ def main():
 
     # 2. Each engine in its own Blender process.
     dump_dir = os.path.join(outdir, "cornell_dump")
-    for i, engine in enumerate(engines, start=2):
-        print(f"[{i}] {engine}: {s1} and {s2} spp, {a.repeats} repeat(s)")
+
+    def render_engine(step, key, engine, extra=()):
+        """Renders S1 and S2 with `engine` (+ render_timed.py args `extra`); stores the result under `key`."""
+        nonlocal crashed
+        print(f"[{step}] {key}: {s1} and {s2} spp, {a.repeats} repeat(s)")
         args = ["--blend", blend, "--engine", engine, "--samples", f"{s1},{s2}",
                 "--out", os.path.join(outdir, "exr"), "--threads", str(threads), "--repeats", str(a.repeats),
-                "--size", str(a.size), "--json", os.path.join(outdir, f"{engine.lower()}.json")]
-        if engine == "CANDELA":
-            shutil.rmtree(dump_dir, ignore_errors=True)
-            args += ["--dump", dump_dir]
+                "--size", str(a.size), "--json", os.path.join(outdir, f"{key.lower()}.json"), *extra]
         rc, out = run(blender_cmd(launcher, os.path.join(HERE, "render_timed.py"), args),
-                      os.path.join(outdir, f"{engine.lower()}.log"))
+                      os.path.join(outdir, f"{key.lower()}.log"))
         res = find_json(out)
         if rc != 0 or res is None:
-            print(f"[bench] {engine} failed:\n" + tail(out))
-            report["errors"].append(f"{engine} render failed (exit {rc})")
+            print(f"[bench] {key} failed:\n" + tail(out))
+            report["errors"].append(f"{key} render failed (exit {rc})")
             crashed = True
-            continue
-        report["engines"][engine] = res
+            return
+        report["engines"][key] = res
         for s in (s1, s2):
             print(f"    {s:5d} spp: {res['best_seconds'][str(s)]:.3f} s (best), "
                   f"mean RGB {', '.join(f'{v:.4f}' for v in res['images'][str(s)]['mean_rgb'])}")
+
+    for i, engine in enumerate(engines, start=2):
+        extra = ()
+        if engine == "CANDELA":
+            shutil.rmtree(dump_dir, ignore_errors=True)
+            extra = ("--dump", dump_dir)
+        render_engine(i, engine, engine, extra)
 
     # 2a. Candela at Cycles 3.4's own light selection. Cycles 3.4 has no light tree: it picks lights from a
     # distribution ∝ power (its light tree arrived in 3.5). Candela's default is the tree, which costs importance
     # evaluations at every vertex and pays off with many lights; at equal settings Candela selects ∝ power too.
     if "CANDELA" in report["engines"] and not a.no_equal:
-        print(f"[{len(engines) + 2}] CANDELA at equal light selection (light_selection=POWER, as Cycles 3.4): "
-              f"{s1} and {s2} spp, {a.repeats} repeat(s)")
-        args = ["--blend", blend, "--engine", "CANDELA", "--samples", f"{s1},{s2}",
-                "--out", os.path.join(outdir, "exr"), "--threads", str(threads), "--repeats", str(a.repeats),
-                "--size", str(a.size), "--json", os.path.join(outdir, "candela_power.json"),
-                "--candela-set", "light_selection=POWER", "--tag", "_power"]
-        rc, out = run(blender_cmd(launcher, os.path.join(HERE, "render_timed.py"), args),
-                      os.path.join(outdir, "candela_power.log"))
-        res = find_json(out)
-        if rc != 0 or res is None:
-            print("[bench] CANDELA (POWER) failed:\n" + tail(out))
-            report["errors"].append(f"CANDELA (POWER) render failed (exit {rc})")
-            crashed = True
-        else:
-            report["engines"]["CANDELA_POWER"] = res
-            for s in (s1, s2):
-                print(f"    {s:5d} spp: {res['best_seconds'][str(s)]:.3f} s (best), "
-                      f"mean RGB {', '.join(f'{v:.4f}' for v in res['images'][str(s)]['mean_rgb'])}")
+        render_engine(len(engines) + 2, "CANDELA_POWER", "CANDELA",
+                      ("--candela-set", "light_selection=POWER", "--tag", "_power"))
 
     # 2b. Export speed and instancing memory (Candela only, inside Blender).
     export = None

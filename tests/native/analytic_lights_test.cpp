@@ -102,6 +102,20 @@ Case receiver_case(const std::string& name) {
     return c;
 }
 
+/// The receiver under an emissive 64 × 32 UV sphere of radius 1 and radiance 1 centred 2 above it; the exact
+/// value sums Lambert's polygon formula over the facets facing the receiver.
+Case sphere_light_case(const std::string& name) {
+    Case c = receiver_case(name);
+    const uint32_t lamp = c.builder.add_material(Color(0.f), Color(1.f));
+    MeshBuilder sphere;
+    sphere.add_sphere(1.f, 64, 32, 0);
+    const float at[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 2, 0, 0, 0, 1};
+    c.builder.add_instance(c.builder.add_sphere(1.f, 64, 32, lamp), at);
+    c.exact = convex_mesh_irradiance(sphere, Vec3(0.f, 0.f, 2.f), Vec3(0.f, 0.f, 2.f), Vec3(0.f), Vec3(0.f, 0.f, 1.f)) /
+              k_pi;
+    return c;
+}
+
 /// Renders `c` with one light-sampling configuration and checks it against the exact value.
 void check(const PreparedScene& scene, const Case& c, const std::string& light_sampling, const std::string& light_pdf,
            int samples) {
@@ -173,14 +187,7 @@ TEST(AnalyticLights, TriangleLightOverDiffuseReceiver) {
 }
 
 TEST(AnalyticLights, SphereLightOverDiffuseReceiver) {
-    Case c = receiver_case("sphere");
-    const uint32_t lamp = c.builder.add_material(Color(0.f), Color(1.f));
-    MeshBuilder sphere;
-    sphere.add_sphere(1.f, 64, 32, 0);
-    const float at[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 2, 0, 0, 0, 1};
-    c.builder.add_instance(c.builder.add_sphere(1.f, 64, 32, lamp), at);
-    c.exact = convex_mesh_irradiance(sphere, Vec3(0.f, 0.f, 2.f), Vec3(0.f, 0.f, 2.f), Vec3(0.f), Vec3(0.f, 0.f, 1.f)) /
-              k_pi;
+    Case c = sphere_light_case("sphere");
     // The inscribed mesh shows a slightly smaller silhouette than the sphere: E = π·L·(r/d)² minus ~0.4 %.
     EXPECT_NEAR(c.exact, 0.25, 0.0025);
     EXPECT_LT(c.exact, 0.25);
@@ -198,14 +205,7 @@ TEST(AnalyticLights, SphereLightOverDiffuseReceiver) {
 // emitter (the sphere's rim facets) the shifted ray met the emitter's plane before tmax and the sample was lost:
 // 0.248527 instead of 0.249436 (−0.37 %), while BSDF_ONLY agreed.
 TEST(AnalyticLights, SphereLightLightSamplingToAFewTenthsOfAPercent) {
-    Case c = receiver_case("sphere (precise)");
-    const uint32_t lamp = c.builder.add_material(Color(0.f), Color(1.f));
-    MeshBuilder sphere;
-    sphere.add_sphere(1.f, 64, 32, 0);
-    const float at[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 2, 0, 0, 0, 1};
-    c.builder.add_instance(c.builder.add_sphere(1.f, 64, 32, lamp), at);
-    c.exact = convex_mesh_irradiance(sphere, Vec3(0.f, 0.f, 2.f), Vec3(0.f, 0.f, 2.f), Vec3(0.f), Vec3(0.f, 0.f, 1.f)) /
-              k_pi;
+    Case c = sphere_light_case("sphere (precise)");
     const PreparedScene scene(c.builder.arrays(c.camera.data()), c.base);
     Params p;
     p.set("light_sampling", std::string("LIGHT_ONLY"));
