@@ -112,6 +112,23 @@ inline uint32_t owen_lsb_hash(uint32_t x, const OwenKey& k) {
 }
 inline uint32_t owen_lsb_hash(uint32_t x, uint64_t seed) { return owen_lsb_hash(x, owen_key(seed)); }
 
+/// Burley 2020's keyed hash (§3: the Laine–Karras construction with his improved constants), the scramble the
+/// Sobol sampler applies on every draw: five triangular steps (multiplying by an even constant, adding the seed,
+/// multiplying by an odd seed-derived number), so output bit k is input bit k XOR a function of the seed and the
+/// input bits below k — an Owen scramble of the bit-reversed word, with no per-seed set-up.
+inline uint32_t burley_lsb_hash(uint32_t x, uint32_t seed) {
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+}
+/// Base-2 Owen scrambling of a 32-bit word (most significant bit first) by burley_lsb_hash.
+inline uint32_t owen_scramble_fast(uint32_t v, uint32_t seed) {
+    return reverse_bits32(burley_lsb_hash(reverse_bits32(v), seed));
+}
+
 /// Base-2 Owen scrambling of a 32-bit word: bit k (from the most significant) is flipped by a hash of the
 /// bits above it. Applied to a fixed-point fraction it is a nested uniform scramble (each scrambled value
 /// is uniform, nets stay nets); applied to an index it maps every aligned block of 2^m indices onto an

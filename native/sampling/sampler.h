@@ -152,58 +152,38 @@ public:
     void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
         SamplerBase::start_pixel_sample(px, py, sample_index);
         m_reversed_index = reverse_bits32(sample_index);
-        if (m_pixel_key != m_cached_pixel_key) {  // a new pixel: invalidate every cached key
-            m_cached_pixel_key = m_pixel_key;
-            if (++m_stamp == 0) {  // the stamp wrapped: clear the stamps for real
-                m_key_stamp.fill(0);
-                m_stamp = 1;
-            }
-        }
     }
-    // In the bit-reversed domain the scrambles are owen_lsb_hash, and sobol_dim0 is the reversal itself, so
-    //   shuffled index  i = reverse(lsb_hash(reverse(index), k1)),
-    //   x = owen_scramble(sobol_dim0(i), k2) = reverse(lsb_hash(i, k2)),
-    //   y = owen_scramble(sobol_dim1(i), k3) = reverse(lsb_hash(sobol_dim1_reversed(i), k3)):
+    // In the bit-reversed domain the scrambles are burley_lsb_hash, and sobol_dim0 is the reversal itself, so
+    //   shuffled index  i = reverse(lsb_hash(reverse(index), s_shuffle)),
+    //   x = owen_scramble(sobol_dim0(i), s_first) = reverse(lsb_hash(i, s_first)),
+    //   y = owen_scramble(sobol_dim1(i), s_second) = reverse(lsb_hash(sobol_dim1_reversed(i), s_second)):
     // the same values as the textbook composition with three bit reversals instead of seven.
     float sample_1d(uint32_t dim) const {
-        DimKeys scratch;
-        const DimKeys& k = keys(dim, &scratch);
-        const uint32_t i = reverse_bits32(owen_lsb_hash(m_reversed_index, k.shuffle));
-        return fixed_to_float(reverse_bits32(owen_lsb_hash(i, k.first)));
+        const Seeds s = seeds(dim);
+        const uint32_t i = reverse_bits32(burley_lsb_hash(m_reversed_index, s.shuffle));
+        return fixed_to_float(reverse_bits32(burley_lsb_hash(i, s.first)));
     }
     Vec2 sample_2d(uint32_t dim) const {
-        DimKeys scratch;
-        const DimKeys& k = keys(dim, &scratch);
-        const uint32_t i = reverse_bits32(owen_lsb_hash(m_reversed_index, k.shuffle));
-        return {fixed_to_float(reverse_bits32(owen_lsb_hash(i, k.first))),
-                fixed_to_float(reverse_bits32(owen_lsb_hash(sobol_dim1_reversed(i), k.second)))};
+        const Seeds s = seeds(dim);
+        const uint32_t i = reverse_bits32(burley_lsb_hash(m_reversed_index, s.shuffle));
+        return {fixed_to_float(reverse_bits32(burley_lsb_hash(i, s.first))),
+                fixed_to_float(reverse_bits32(burley_lsb_hash(sobol_dim1_reversed(i), s.second)))};
+    }
+
+protected:
+    /// The scramble seeds of dimension dim in this pixel (index shuffle, first and second coordinate): one
+    /// 64-bit mix of the pixel key and the dimension, and a multiplicative rehash of it for the third word.
+    /// Derived on every draw — cheaper than caching them per pixel.
+    struct Seeds {
+        uint32_t shuffle, first, second;
+    };
+    Seeds seeds(uint32_t dim) const {
+        const uint64_t h = mix64(m_pixel_key + (uint64_t(dim) + 1u) * 0x9e3779b97f4a7c15ULL);
+        return {uint32_t(h), uint32_t(h >> 32), uint32_t((h * 0xbf58476d1ce4e5b9ULL) >> 32)};
     }
 
 private:
-    /// The scramble keys of dimension dim (index shuffle, first and second coordinate), derived once per pixel:
-    /// a pixel's samples are drawn in runs (a pass draws up to 16 per pixel), and every sample of a pixel uses
-    /// the same keys. Dimensions beyond the cache derive them on every call.
-    struct DimKeys {
-        OwenKey shuffle, first, second;
-    };
-    static constexpr uint32_t k_cached_dims = 128;
-    const DimKeys& keys(uint32_t dim, DimKeys* scratch) const {
-        DimKeys* k = scratch;
-        if (dim < k_cached_dims) {
-            k = &m_keys[dim];
-            if (m_key_stamp[dim] == m_stamp) return *k;
-            m_key_stamp[dim] = m_stamp;
-        }
-        *k = {owen_key(dim_key(dim, 1)), owen_key(dim_key(dim, 2)), owen_key(dim_key(dim, 3))};
-        return *k;
-    }
-
     uint32_t m_reversed_index = 0;  // the scrambles work on bit-reversed words: reverse the index once
-    // Cache (per sampler object, which one thread owns): entry d is valid when m_key_stamp[d] == m_stamp.
-    uint64_t m_cached_pixel_key = 0;
-    uint32_t m_stamp = 1;
-    mutable std::array<uint32_t, k_cached_dims> m_key_stamp{};
-    mutable std::array<DimKeys, k_cached_dims> m_keys{};
 };
 
 using Sampler = std::variant<IndependentSampler, StratifiedSampler, NRooksSampler, HaltonSampler, HammersleySampler,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <vector>
 
@@ -104,18 +105,25 @@ TEST(LowDiscrepancy, PermuteIndexIsAPermutation) {
 }
 
 TEST(LowDiscrepancy, OwenScrambleKeepsAlignedBlocks) {
-    // Base-2 Owen scrambling maps each aligned block of 2^m words onto one aligned block, bijectively.
-    for (uint64_t seed : {3ull, 77ull}) {
-        for (int m = 0; m <= 10; ++m) {
-            const uint32_t n = 1u << m;
-            std::set<uint32_t> values;
-            const uint32_t block = owen_scramble_base2(0, seed) >> m;
-            for (uint32_t i = 0; i < n; ++i) {
-                const uint32_t v = owen_scramble_base2(i, seed);
-                ASSERT_EQ(v >> m, block);
-                values.insert(v);
+    // Base-2 Owen scrambling maps each aligned block of 2^m words onto one aligned block, bijectively: both the
+    // keyed scramble (Halton, Hammersley) and Burley's cheap one (Sobol).
+    const std::function<uint32_t(uint32_t, uint32_t)> scramblers[] = {
+        [](uint32_t v, uint32_t seed) { return owen_scramble_base2(v, uint64_t(seed)); },
+        [](uint32_t v, uint32_t seed) { return owen_scramble_fast(v, seed); },
+    };
+    for (const auto& scramble : scramblers) {
+        for (uint32_t seed : {3u, 77u, 0xdeadbeefu}) {
+            for (int m = 0; m <= 10; ++m) {
+                const uint32_t n = 1u << m;
+                std::set<uint32_t> values;
+                const uint32_t block = scramble(0, seed) >> m;
+                for (uint32_t i = 0; i < n; ++i) {
+                    const uint32_t v = scramble(i, seed);
+                    ASSERT_EQ(v >> m, block);
+                    values.insert(v);
+                }
+                ASSERT_EQ(values.size(), n);
             }
-            ASSERT_EQ(values.size(), n);
         }
     }
 }
@@ -409,7 +417,7 @@ namespace {
 /// Exposes the per-dimension seeds so the fast Sobol evaluation can be checked against its definition.
 struct SobolProbe : SobolSampler {
     using SobolSampler::SobolSampler;
-    uint64_t key(uint32_t dim, uint32_t purpose) const { return dim_key(dim, purpose); }
+    using SobolSampler::seeds;
 };
 }  // namespace
 
@@ -419,9 +427,10 @@ TEST(SobolSampler, EqualsTheTextbookComposition) {
     for (uint32_t index : {0u, 1u, 2u, 3u, 17u, 63u, 64u, 1000u, 123456u}) {
         s.start_pixel_sample(3, 5, index);
         for (uint32_t dim : {0u, 2u, 4u, 5u, 7u, 100u}) {
-            const uint32_t i = owen_scramble_base2(index, s.key(dim, 1));
-            const float x = fixed_to_float(owen_scramble_base2(sobol_dim0(i), s.key(dim, 2)));
-            const float y = fixed_to_float(owen_scramble_base2(sobol_dim1(i), s.key(dim, 3)));
+            const auto seeds = s.seeds(dim);
+            const uint32_t i = owen_scramble_fast(index, seeds.shuffle);
+            const float x = fixed_to_float(owen_scramble_fast(sobol_dim0(i), seeds.first));
+            const float y = fixed_to_float(owen_scramble_fast(sobol_dim1(i), seeds.second));
             EXPECT_EQ(s.sample_1d(dim), x) << index << "/" << dim;
             const Vec2 v = s.sample_2d(dim);
             EXPECT_EQ(v.x, x) << index << "/" << dim;
