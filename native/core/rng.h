@@ -20,6 +20,16 @@ inline uint64_t mix64(uint64_t k) {
     return k;
 }
 
+/// 32-bit integer hash (Wellons' "lowbias32": xorshift-multiply, bias ~0.17): a bijection, cheap in SIMD lanes.
+inline uint32_t hash32(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
 inline uint64_t rotl64(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
 
 /// Hash of several integers, order-sensitive.

@@ -24,10 +24,10 @@ namespace candela {
 /// Scene::intersect_area_light's (1 + 1e-4) so camera and BSDF rays see a light exactly when light sampling does.
 constexpr float k_shadow_epsilon = 1e-4f;
 
-/// True if something blocks the light sample `ls` seen from `hit`; `side` is the geometric normal flipped to the
-/// side wi leaves from. Distant lights (infinite dist) are tested along wi to infinity.
-inline bool shadow_ray_blocked(const Scene& scene, const SurfaceHit& hit, const Vec3& side, const LightSample& ls) {
-    const Vec3 origin = offset_ray_origin(hit.p, side);
+/// True if something blocks the light sample `ls` seen from `hit`; `origin` is hit.p offset to the side wi leaves
+/// from (offset_ray_origin with the geometric normal flipped to that side). Distant lights (infinite dist) are
+/// tested along wi to infinity.
+inline bool shadow_ray_blocked(const Scene& scene, const SurfaceHit& hit, const Vec3& origin, const LightSample& ls) {
     if (!std::isfinite(ls.dist)) return scene.occluded(origin, ls.wi, std::numeric_limits<float>::infinity(), hit.primitive);
     const Vec3 to_light = (hit.p + ls.wi * ls.dist) - origin;
     const float dist = length(to_light);

@@ -46,42 +46,26 @@ inline double hammersley(int dim, uint64_t i, uint64_t n) {
 /// Together they form a (0,2)-sequence in base 2: every aligned block of 2^m indices is a (0,m,2)-net.
 inline uint32_t sobol_dim0(uint32_t i) { return reverse_bits32(i); }
 /// Sobol dimension 1 by its generator matrix (direction number of bit j: v_0 = 2^31, v_{j+1} = v_j ^ v_j >> 1),
-/// bit-by-bit: the reference the table below is built from and checked against.
+/// bit-by-bit: the reference the transform below is checked against.
 constexpr uint32_t sobol_dim1_bitwise(uint32_t i) {
     uint32_t r = 0;
     for (uint32_t v = 1u << 31; i != 0; i >>= 1, v ^= v >> 1)
         if (i & 1u) r ^= v;
     return r;
 }
-namespace detail {
-/// The matrix-vector product is linear over GF(2), so it splits into four byte lookups: entry [k][b] is the
-/// image of byte b placed at byte position k. Scrambled indices use all 32 bits, where the bit loop's
-/// data-dependent branches were the sampler's main cost.
-struct SobolDim1Tables {
-    uint32_t t[4][256] = {};
-    uint32_t reversed[4][256] = {};  // reverse_bits32 of each entry (bit reversal is linear over GF(2) too)
-    constexpr SobolDim1Tables() {
-        for (int k = 0; k < 4; ++k)
-            for (uint32_t b = 0; b < 256; ++b) {
-                const uint32_t v = sobol_dim1_bitwise(b << (8 * k));
-                t[k][b] = v;
-                uint32_t r = 0;
-                for (int j = 0; j < 32; ++j) r |= ((v >> j) & 1u) << (31 - j);
-                reversed[k][b] = r;
-            }
-    }
-};
-inline constexpr SobolDim1Tables k_sobol_dim1_tables{};
-}  // namespace detail
-inline uint32_t sobol_dim1(uint32_t i) {
-    const auto& t = detail::k_sobol_dim1_tables.t;
-    return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
-}
-/// reverse_bits32(sobol_dim1(i)), without the reversal.
+/// reverse_bits32(sobol_dim1(i)), without the reversal. Direction number v_k has bit 31 − j set iff C(k, j) is
+/// odd, i.e. (Lucas) iff j ⊆ k as bit sets; so bit j of the reversed result is the XOR of the index bits i_k
+/// over all k ⊇ j — a superset-XOR transform over the five bits of the position, one shift-mask-xor per bit.
+/// Branch- and table-free (the same steps run in SIMD lanes, sampling/sobol_x8.h).
 inline uint32_t sobol_dim1_reversed(uint32_t i) {
-    const auto& t = detail::k_sobol_dim1_tables.reversed;
-    return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
+    i ^= (i >> 1) & 0x55555555u;
+    i ^= (i >> 2) & 0x33333333u;
+    i ^= (i >> 4) & 0x0f0f0f0fu;
+    i ^= (i >> 8) & 0x00ff00ffu;
+    i ^= (i >> 16) & 0x0000ffffu;
+    return i;
 }
+inline uint32_t sobol_dim1(uint32_t i) { return reverse_bits32(sobol_dim1_reversed(i)); }
 
 /// The seed-dependent constants of owen_lsb_hash: one mix of the seed gives 64 random bits, and the constants
 /// are that word and two odd-multiplied rotations of it (cheap, and as random as the word itself for

@@ -29,12 +29,14 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
 #include "core/rng.h"
 #include "core/vec.h"
 #include "sampling/low_discrepancy.h"
+#include "sampling/sobol_x8.h"
 
 namespace candela {
 
@@ -146,45 +148,77 @@ public:
     Vec2 sample_2d(uint32_t dim) const { return {sample_1d(dim), sample_1d(dim + 1)}; }
 };
 
+/// The per-bounce values a path vertex uses (the named dimensions LightSelect, Light, Bsdf, Roulette, BsdfLobe).
+struct BounceSample {
+    float light_select = 0.5f;
+    Vec2 light{0.5f, 0.5f};
+    Vec2 bsdf{0.5f, 0.5f};
+    float roulette = 0.5f;
+    float lobe = 0.5f;
+};
+/// Which of BounceSample's values a vertex needs (the BSDF direction always).
+enum BounceNeeds : unsigned { k_need_light_select = 1, k_need_light = 2, k_need_roulette = 4, k_need_lobe = 8 };
+
 class SobolSampler : public SamplerBase {
 public:
     using SamplerBase::SamplerBase;
     void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
         SamplerBase::start_pixel_sample(px, py, sample_index);
         m_reversed_index = reverse_bits32(sample_index);
+        m_pixel_seed = uint32_t(m_pixel_key);
     }
-    // In the bit-reversed domain the scrambles are burley_lsb_hash, and sobol_dim0 is the reversal itself, so
+    // Burley 2020, evaluated in the bit-reversed domain where the scrambles are burley_lsb_hash and sobol_dim0
+    // is the reversal itself (sampling/sobol_x8.h spells the steps out):
     //   shuffled index  i = reverse(lsb_hash(reverse(index), s_shuffle)),
     //   x = owen_scramble(sobol_dim0(i), s_first) = reverse(lsb_hash(i, s_first)),
     //   y = owen_scramble(sobol_dim1(i), s_second) = reverse(lsb_hash(sobol_dim1_reversed(i), s_second)):
     // the same values as the textbook composition with three bit reversals instead of seven.
-    float sample_1d(uint32_t dim) const {
-        const Seeds s = seeds(dim);
-        const uint32_t i = reverse_bits32(burley_lsb_hash(m_reversed_index, s.shuffle));
-        return fixed_to_float(reverse_bits32(burley_lsb_hash(i, s.first)));
-    }
+    float sample_1d(uint32_t dim) const { return sobol_lane(m_pixel_seed, m_reversed_index, dim, false); }
     Vec2 sample_2d(uint32_t dim) const {
-        const Seeds s = seeds(dim);
-        const uint32_t i = reverse_bits32(burley_lsb_hash(m_reversed_index, s.shuffle));
-        return {fixed_to_float(reverse_bits32(burley_lsb_hash(i, s.first))),
-                fixed_to_float(reverse_bits32(burley_lsb_hash(sobol_dim1_reversed(i), s.second)))};
+        const uint32_t i = reverse_bits32(burley_lsb_hash(m_reversed_index, sobol_seed(m_pixel_seed, dim, 1)));
+        return {fixed_to_float(reverse_bits32(burley_lsb_hash(i, sobol_seed(m_pixel_seed, dim, 2)))),
+                fixed_to_float(reverse_bits32(burley_lsb_hash(sobol_dim1_reversed(i), sobol_seed(m_pixel_seed, dim, 3))))};
+    }
+    /// Every per-bounce value of `bounce` in one 8-lane batch: the same values as the single draws.
+    BounceSample sample_bounce(int bounce) const {
+        const uint32_t select = dimension_index(Dim::LightSelect, bounce), light = dimension_index(Dim::Light, bounce),
+                       bsdf = dimension_index(Dim::Bsdf, bounce);
+        const uint32_t dims[8] = {select, light, light, bsdf, bsdf, dimension_index(Dim::Roulette, bounce),
+                                  dimension_index(Dim::BsdfLobe, bounce), select};
+        float v[8];
+        sobol_x8(m_pixel_seed, m_reversed_index, dims, /*y lanes: light.y, bsdf.y*/ (1u << 2) | (1u << 4), v);
+        return {v[0], {v[1], v[2]}, {v[3], v[4]}, v[5], v[6]};
     }
 
 protected:
-    /// The scramble seeds of dimension dim in this pixel (index shuffle, first and second coordinate): one
-    /// 64-bit mix of the pixel key and the dimension, and a multiplicative rehash of it for the third word.
-    /// Derived on every draw — cheaper than caching them per pixel.
+    /// The scramble seeds of request `dim` in this pixel (index shuffle, first and second coordinate).
     struct Seeds {
         uint32_t shuffle, first, second;
     };
     Seeds seeds(uint32_t dim) const {
-        const uint64_t h = mix64(m_pixel_key + (uint64_t(dim) + 1u) * 0x9e3779b97f4a7c15ULL);
-        return {uint32_t(h), uint32_t(h >> 32), uint32_t((h * 0xbf58476d1ce4e5b9ULL) >> 32)};
+        return {sobol_seed(m_pixel_seed, dim, 1), sobol_seed(m_pixel_seed, dim, 2), sobol_seed(m_pixel_seed, dim, 3)};
     }
 
 private:
     uint32_t m_reversed_index = 0;  // the scrambles work on bit-reversed words: reverse the index once
+    uint32_t m_pixel_seed = 0;      // 32 random bits of the pixel key: sobol_seed() derives every scramble from it
 };
+
+/// The values of one bounce: the Sobol sampler draws them all in one batch, the others only those needed.
+template <class S>
+BounceSample draw_bounce(const S& s, int bounce, unsigned needs) {
+    if constexpr (std::is_same_v<S, SobolSampler>) {
+        return s.sample_bounce(bounce);
+    } else {
+        BounceSample b;
+        if (needs & k_need_light_select) b.light_select = s.sample_1d(dimension_index(Dim::LightSelect, bounce));
+        if (needs & k_need_light) b.light = s.sample_2d(dimension_index(Dim::Light, bounce));
+        b.bsdf = s.sample_2d(dimension_index(Dim::Bsdf, bounce));
+        if (needs & k_need_roulette) b.roulette = s.sample_1d(dimension_index(Dim::Roulette, bounce));
+        if (needs & k_need_lobe) b.lobe = s.sample_1d(dimension_index(Dim::BsdfLobe, bounce));
+        return b;
+    }
+}
 
 using Sampler = std::variant<IndependentSampler, StratifiedSampler, NRooksSampler, HaltonSampler, HammersleySampler,
                              SobolSampler>;

@@ -4,6 +4,7 @@
 // a small absolute step near it.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -20,16 +21,17 @@ namespace candela {
 /// (|p|∞/2048, equal to 1/65536 at |p|∞ = 1/32). At |p|∞ ≥ 1/32 nothing changes.
 inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& n) {
     constexpr float k_origin = 1.f / 32.f, k_float_scale = 1.f / 65536.f, k_int_scale = 256.f;
-    const float magnitude = std::fmax(std::fabs(p.x), std::fmax(std::fabs(p.y), std::fabs(p.z)));
-    const float float_scale = std::fmin(k_float_scale, magnitude * (k_float_scale / k_origin));
-    Vec3 out;
-    for (int i = 0; i < 3; ++i) {
-        const int32_t of_i = static_cast<int32_t>(k_int_scale * n[i]);
-        const int32_t bits = static_cast<int32_t>(float_bits(p[i]));
-        const float p_i = bits_float(static_cast<uint32_t>(bits + ((p[i] < 0.f) ? -of_i : of_i)));
-        out[i] = std::fabs(p[i]) < k_origin ? p[i] + float_scale * n[i] : p_i;
-    }
-    return out;
+    const Vec3 a(std::fabs(p.x), std::fabs(p.y), std::fabs(p.z));
+    // std::max/min, not fmax/fmin: p is finite, and these compile to single instructions.
+    const float magnitude = std::max(a.x, std::max(a.y, a.z));
+    const float float_scale = std::min(k_float_scale, magnitude * (k_float_scale / k_origin));
+    auto component = [float_scale](float p_i, float abs_i, float n_i) {
+        const int32_t of_i = static_cast<int32_t>(k_int_scale * n_i);
+        const int32_t bits = static_cast<int32_t>(float_bits(p_i));
+        const float stepped = bits_float(static_cast<uint32_t>(bits + (p_i < 0.f ? -of_i : of_i)));
+        return abs_i < k_origin ? p_i + float_scale * n_i : stepped;
+    };
+    return {component(p.x, a.x, n.x), component(p.y, a.y, n.y), component(p.z, a.z, n.z)};
 }
 
 /// Origin for a ray leaving a surface with geometric normal ng in direction d.

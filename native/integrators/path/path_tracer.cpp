@@ -144,20 +144,36 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
         const Frame frame(dot(wo, ns) > 0.f ? ns : ng);  // a shading normal facing away: fall back
         const Vec3 wo_local = frame.to_local(wo);
         const Bsdf& bsdf = sp.bsdf();
+        // Ray origins off the surface, on the side of ng (index 0: reflection, the side wo is on) or of −ng (1):
+        // made on first use, then shared by every shadow ray and the continuation leaving that side.
+        Vec3 spawn[2];
+        bool spawned[2] = {false, false};
+        auto spawn_origin = [&](bool front) -> const Vec3& {
+            const int side = front ? 0 : 1;
+            if (!spawned[side]) {
+                spawn[side] = offset_ray_origin(hit.p, front ? ng : -ng);
+                spawned[side] = true;
+            }
+            return spawn[side];
+        };
 
         // Named sample dimensions: each is the same sequence dimension for every sample of every pixel, so a
         // value is drawn only where it is used (skipping one never shifts another).
         const int dim = bounce + st.dim_offset;
         const bool nee_here = nee_enabled && bsdf.has_non_delta();
-        const float u_select = nee_here && !m_light_sampler.exhaustive() ? get_1d(sampler, Dim::LightSelect, dim) : 0.5f;
-        const Vec2 u_light = nee_here ? get_2d(sampler, Dim::Light, dim) : Vec2{0.5f, 0.5f};
-        const Vec2 u_bsdf = get_2d(sampler, Dim::Bsdf, dim);
         const bool roulette_here = cfg.rr_mode != RouletteMode::Off && bounce + 1 >= cfg.rr_start_bounce;
-        const float u_rr = roulette_here ? get_1d(sampler, Dim::Roulette, dim) : 0.5f;
         // The discrete choice: which lobe, and for a dielectric (the one lobe that uses it) or a two-sided
         // hemisphere strategy, which side.
         const bool discrete_here = bsdf.size() > 1 || (bsdf.flags() & k_bsdf_transmission);
-        const float u_lobe = discrete_here ? get_1d(sampler, Dim::BsdfLobe, dim) : 0.5f;
+        const unsigned needs = (nee_here && !m_light_sampler.exhaustive() ? k_need_light_select : 0u) |
+                               (nee_here ? k_need_light : 0u) | (roulette_here ? k_need_roulette : 0u) |
+                               (discrete_here ? k_need_lobe : 0u);
+        const BounceSample u = draw_bounce(sampler, dim, needs);
+        const float u_select = (needs & k_need_light_select) ? u.light_select : 0.5f;
+        const Vec2 u_light = nee_here ? u.light : Vec2{0.5f, 0.5f};
+        const Vec2 u_bsdf = u.bsdf;
+        const float u_rr = roulette_here ? u.roulette : 0.5f;
+        const float u_lobe = discrete_here ? u.lobe : 0.5f;
 
         // Next-event estimation: k stratified shadow rays, each choosing one light (or, for ALL, k for every
         // light). The contribution of light i is f·Li·|cos|/(k·pmf·pdf), MIS-weighted against the continuation.
@@ -174,7 +190,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
             const Color f = bsdf.f(wo_local, wi_local) * std::fabs(wi_local.z);
             if (is_black(f)) return 0.0;
             ++stats.rays;
-            if (shadow_ray_blocked(m_scene, hit, cos_g > 0.f ? ng : -ng, ls)) return 0.0;
+            if (shadow_ray_blocked(m_scene, hit, spawn_origin(cos_g > 0.f), ls)) return 0.0;
             const float density = float(k) * pmf * ls.pdf;
             float w = 1.f;
             if (!ls.is_delta && cfg.light_sampling == LightSampling::Mis)
@@ -251,7 +267,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
                 next->beta /= survive;
             }
             if (is_black(next->beta) || !is_finite(next->beta)) return false;
-            *next_ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? ng : -ng), wi, 0.f, k_inf,
+            *next_ray = Ray{spawn_origin(cos_g > 0.f), wi, 0.f, k_inf,
                             continuation_ray_type(bs, ray.type)};
             return true;
         };
