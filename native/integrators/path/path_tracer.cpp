@@ -84,7 +84,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
         // Emission found by this ray: MIS against light sampling (weight 1 after a camera ray or a delta
         // scatter; 0 when only light sampling estimates direct light). Indirect light (found after at least
         // one diffuse/glossy bounce from the first surface) may be clamped.
-        auto add_emission = [&](const Color& Le, float light_pdf) {
+        auto add_emission = [&](const Color& Le, float light_pdf) __attribute__((always_inline)) {
             float w = 1.f;
             if (!st.specular) {
                 if (cfg.light_sampling == LightSampling::LightOnly) w = light_pdf > 0.f ? 0.f : 1.f;
@@ -97,7 +97,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
         };
         // Density with which next-event estimation at the previous vertex would have produced this ray
         // toward light `index` (k shadow rays; with BSDF_ONLY nothing but delta lights is light-sampled).
-        auto light_pdf = [&](uint32_t index, float t) {
+        auto light_pdf = [&](uint32_t index, float t) __attribute__((always_inline)) {
             if (cfg.light_sampling == LightSampling::BsdfOnly || st.specular) return 0.f;
             const float pmf = ward ? ward->adaptive_pmf(st.origin, index, size_t(st.ward_tested))
                                    : m_light_sampler.nee_pmf(st.origin, index);
@@ -180,7 +180,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
         // Returns the sample's visible irradiance share, luminance(Li)·|cos θ|/(k·pdf) (0 if occluded), the
         // quantity Ward's bounds bound.
         const LightSampleContext ctx{hit.p, ns};
-        auto estimate_light = [&](uint32_t li, float pmf, Vec2 u) -> double {
+        auto estimate_light = [&](uint32_t li, float pmf, Vec2 u) __attribute__((always_inline)) -> double {
             const LightSample ls = light_sample_li(lights[li], ctx, u, cfg.light_pdf);
             if (!ls.valid() || (cfg.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return 0.0;
             const Vec3 wi_local = frame.to_local(ls.wi);
@@ -241,7 +241,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
 
         // Continue the path (at the first surface, in branching_factor stratified branches).
         const int branches = bounce == 0 ? cfg.branching_factor : 1;
-        auto continuation = [&](int j, Ray* next_ray, PathState* next) {
+        auto continuation = [&](int j, Ray* next_ray, PathState* next) __attribute__((always_inline)) {
             const BsdfSample bs = sample_continuation(cfg.hemisphere_sampling, bsdf, wo_local,
                                                       light_sample_u(u_bsdf, uint32_t(j), uint32_t(branches)), light_select_u(u_lobe, uint32_t(j), uint32_t(branches)));
             if (!bs.valid() || is_black(bs.f)) return false;
