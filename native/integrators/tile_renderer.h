@@ -75,8 +75,14 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                         for (int s = begin; s < end; ++s) {
                             const uint32_t replicate = noise_replicate_of(uint32_t(s));
                             Sampler& sampler = replicates[replicate];
-                            start_pixel_sample(sampler, uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
-                            const Vec2 offset = ps.filter.sample(get_pixel_2d(sampler));
+                            // Positioning and the filter draw in one visit, so the draw inlines.
+                            const Vec2 u_pixel = std::visit(
+                                [&](auto& concrete) {
+                                    concrete.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
+                                    return concrete.sample_2d(dimension_index(Dim::Filter));
+                                },
+                                sampler);
+                            const Vec2 offset = ps.filter.sample(u_pixel);
                             const Vec2 u_lens = camera.has_aperture() ? get_2d(sampler, Dim::Lens) : Vec2{0.5f, 0.5f};
                             const Ray ray = camera.generate_ray({fx + 0.5f + offset.x, fy + 0.5f + offset.y}, u_lens);
                             float alpha = 1.f;

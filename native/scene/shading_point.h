@@ -4,7 +4,8 @@
 // hit and held here.
 #pragma once
 
-#include <optional>
+#include <new>
+#include <type_traits>
 
 #include "bsdf/bsdf.h"
 #include "core/vec.h"
@@ -16,13 +17,21 @@ struct ShadingPoint {
     Color emission{0.f};   // emitted radiance (both sides)
     bool backfacing = false;
 
-    const Bsdf& bsdf() const { return m_own ? *m_own : *m_shared; }
+    const Bsdf& bsdf() const { return m_owns ? *std::launder(reinterpret_cast<const Bsdf*>(m_storage)) : *m_shared; }
     void use(const Bsdf* shared) { m_shared = shared; }
-    void own(Bsdf b) { m_own.emplace(std::move(b)); }
+    void own(const Bsdf& b) {
+        new (m_storage) Bsdf(b);
+        m_owns = true;
+    }
 
 private:
+    // Raw storage, not std::optional<Bsdf>: a hit on a constant material (the common case) then costs no
+    // initialisation of the ~500-byte BSDF (GCC zero-filled the optional's payload on every shade()).
+    static_assert(std::is_trivially_destructible_v<Bsdf> && std::is_trivially_copyable_v<Bsdf>,
+                  "ShadingPoint keeps its own BSDF in raw storage");
     const Bsdf* m_shared = nullptr;
-    std::optional<Bsdf> m_own;
+    bool m_owns = false;
+    alignas(Bsdf) unsigned char m_storage[sizeof(Bsdf)];
 };
 
 }  // namespace candela
