@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace candela {
 namespace {
@@ -198,9 +199,26 @@ private:
     }
 
     void cluster(size_t c0, size_t c1) {
-        // By object (the offsets' order has done its job); objects meet where their whole boxes overlap.
-        std::sort(m_entries.begin() + c0, m_entries.begin() + c1,
-                  [](const Entry& a, const Entry& b) { return a.object != b.object ? a.object < b.object : a.tri < b.tri; });
+        // By object (the offsets' order has done its job: a counting sort, keeping it within each object);
+        // objects meet where their whole boxes overlap.
+        m_slot.resize(m_objects.size(), -1);
+        m_counts.clear();
+        std::vector<uint32_t> present;
+        for (size_t i = c0; i < c1; ++i) {
+            int32_t& slot = m_slot[m_entries[i].object];
+            if (slot < 0) {
+                slot = int32_t(present.size());
+                present.push_back(m_entries[i].object);
+                m_counts.push_back(0);
+            }
+            ++m_counts[size_t(slot)];
+        }
+        size_t offset = 0;
+        for (size_t& c : m_counts) offset += std::exchange(c, offset);
+        m_scratch.resize(c1 - c0);
+        for (size_t i = c0; i < c1; ++i) m_scratch[m_counts[size_t(m_slot[m_entries[i].object])]++] = m_entries[i];
+        std::copy(m_scratch.begin(), m_scratch.end(), m_entries.begin() + c0);
+        for (uint32_t o : present) m_slot[o] = -1;
         m_items.assign(c1 - c0, Item{});
         m_cluster = c0;
         struct Group {
@@ -337,6 +355,9 @@ private:
         return (key & 0xFFu) + k_cells * (((key >> 8) & 0xFFu) + k_cells * size_t(key >> 16));
     }
     std::vector<int32_t> m_cell_object = std::vector<int32_t>(size_t(k_cells) * k_cells * k_cells, k_none);
+    std::vector<int32_t> m_slot;   // per object: its bucket in the current cluster's counting sort, or −1
+    std::vector<size_t> m_counts;
+    std::vector<Entry> m_scratch;
     std::vector<Item> m_items;     // the current cluster's rows
     size_t m_cluster = 0;          // its first entry
     std::vector<Box> m_boxes;      // per object, padded by the distance tolerance

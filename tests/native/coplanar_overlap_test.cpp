@@ -66,6 +66,24 @@ TEST(CoplanarOverlap, FacesTurnedAwayFromEachOtherStillOverlap) {
     EXPECT_EQ(s.find().flagged, flags({1, 1}));
 }
 
+// Faces are filed under one of ±n, chosen by the sign of n·g for a fixed direction g; for a plane containing g
+// rounding can give a face and its rival opposite signs. Here the two faces' normals are tilted 1e-5 toward +g and
+// −g (within the normal allowance of 1e-4; their far corners 1e-5 off each other's plane, within 2·2.1e-5·S with
+// S ≈ 2): they must still meet.
+TEST(CoplanarOverlap, FacesInAPlaneAlongTheSignDirectionStillMeet) {
+    const Vec3 g = normalize(Vec3(0.5377f, 0.7031f, 0.4652f));  // coplanar_overlap.cpp's direction
+    const Vec3 n0 = normalize(cross(g, Vec3(0.f, 0.f, 1.f))), w = cross(n0, g);
+    const Vec3 p = n0 * 1.5f;
+    Soup s;
+    for (const float sign : {1.f, -1.f}) {
+        const Vec3 e1 = g + n0 * (sign * 1e-5f);
+        const Vec3 n = cross(e1, w);  // n0 − sign·1e-5·g
+        ASSERT_LT(sign * dot(n, g), 0.f) << "the faces must fall on opposite sides of g";
+        s.quad_object(p + g * (sign > 0.f ? 0.f : 0.3f), e1, w);
+    }
+    EXPECT_EQ(s.find().flagged, flags({1, 1}));
+}
+
 TEST(CoplanarOverlap, CoplanarButDisjointOrTouchingQuadsAreNotFlagged) {
     Soup s;
     s.quad_object(Vec3(0.f, 0.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));
