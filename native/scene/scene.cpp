@@ -7,12 +7,14 @@
 
 #include "core/error.h"
 #include "bsdf/material_inputs.h"
+#include "scene/coplanar_overlap.h"
 #include "scene/scene_arrays.h"
 #include "scene/scene_parts.h"
 
 namespace candela {
 
-/// Embree's per-query context plus what filter_hits needs. The context filter runs for every candidate hit.
+/// Embree's per-query context plus what filter_hits needs. It runs as the context filter (every candidate hit) for
+/// ray types some object is hidden from, and otherwise as the geometry filter of the objects with a coplanar rival.
 struct Scene::QueryContext {
     RTCIntersectContext context;
     PrimitiveRef skip[2];
@@ -41,13 +43,9 @@ Affine camera_matrix(const SceneArrays& arrays) {
 
 uint32_t top_level_id(const PrimitiveRef& h) { return h.inst != PrimitiveRef::k_none ? h.inst : h.geom; }
 
-/// Tie tolerance of coplanar hits, as a distance between planes: Embree's hit distance comes from
-/// dot(v0 − o, Ng)/dot(d, Ng) in float, whose rounding is a few ulps of the largest coordinate involved (the
-/// ray origin, the hit point, the triangle's vertices); two triangles lying in one plane (or in planes rotated
-/// and rounded to float from one plane) therefore differ by ~ε·M in plane distance, M the largest magnitude.
-/// 32ε·M (2e-6 M) leaves a wide margin over that and is still ~15× below a gap of 1e-4 of the scene's size seen
-/// from inside the scene (M ≈ 3 sizes there).
-constexpr float k_coplanar_ulps = 32.f * 0x1p-24f;
+/// Marks the rays Scene shoots (RTCRay::id): their context is a QueryContext. Raw queries through embree_scene()
+/// leave id 0 and pass the geometry filters untouched.
+constexpr unsigned k_query_tag = 0x43414E44u;  // "CAND"
 /// Area lights count up to this relative distance behind a surface: the shadow rays' margin (1 − 1e-4).
 constexpr float k_light_margin = 1e-4f;
 
@@ -104,6 +102,12 @@ void Scene::filter_hits(const RTCFilterFunctionNArguments* args) {
         // Keep reporting hits up to the tolerance behind this one, so a coplanar rival is always compared.
         if (std::isfinite(tolerance)) tfar = t + tolerance;
     }
+}
+
+void Scene::coplanar_filter(const RTCFilterFunctionNArguments* args) {
+    // With a context filter installed it does the whole job (it runs after this one, on every hit).
+    if (args->context->filter != nullptr || RTCRayN_id(args->ray, args->N, 0) != k_query_tag) return;
+    filter_hits(args);
 }
 
 bool Scene::outranks(const PrimitiveRef& a, const PrimitiveRef& b) const {
@@ -201,7 +205,8 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
 
     // Fills an Embree triangle geometry with the mesh's vertices mapped through `to_space`; *magnitude gets the
     // largest |coordinate| of the mapped vertices.
-    auto make_geometry = [&](uint32_t m, const Affine& to_space, float* magnitude) {
+    // `coplanar`: the geometry gets the coplanar tie-break filter.
+    auto make_geometry = [&](uint32_t m, const Affine& to_space, float* magnitude, bool coplanar) {
         const MeshRange& r = ranges[m];
         RTCGeometry g = rtcNewGeometry(m_device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
         const size_t nv = r.vert_end - r.vert_begin, nt = r.tri_end - r.tri_begin;
@@ -219,6 +224,10 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             *magnitude = std::max({*magnitude, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
         }
         for (size_t t = 0; t < 3 * nt; ++t) ib[t] = triangles[3 * size_t(r.tri_begin) + t] - r.vert_begin;
+        if (coplanar) {
+            rtcSetGeometryIntersectFilterFunction(g, &Scene::coplanar_filter);
+            rtcSetGeometryOccludedFilterFunction(g, &Scene::coplanar_filter);
+        }
         rtcCommitGeometry(g);
         return g;
     };
@@ -274,21 +283,45 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         m_object_flags[id] = flags;
     };
 
+    // Each instance's object → camera-world transform.
+    auto instance_transform = [&](size_t i) {
+        Affine xf = Affine::from_rows(instance_xf + 16 * i);
+        for (int r = 0; r < 3; ++r) xf.m[r][3] += m_offset[r];
+        return xf;
+    };
+
+    // What needs Embree filters: ray types some object is hidden from get the context filter on every hit;
+    // objects with a coplanar overlapping rival in another object get the tie-break as a geometry filter (an
+    // instanced mesh for all its instances if any of them has a rival). Everything else takes Embree's closest hit.
+    std::vector<CoplanarObject> coplanar_objects(instance_count);
+    for (size_t i = 0; i < instance_count; ++i) {
+        const uint32_t m = instance_mesh[i];
+        if (ranges[m].tri_begin == ranges[m].tri_end) continue;
+        m_hidden_from |= ~(flags_arr ? flags_arr->data<uint8_t>()[i] : uint8_t(k_object_default)) & k_ray_all;
+        coplanar_objects[i] = {ranges[m].tri_begin, ranges[m].tri_end, instance_transform(i)};
+    }
+    const CoplanarReport coplanar = find_coplanar_rivals(positions, triangles, coplanar_objects);
+    std::vector<uint8_t> mesh_coplanar(mesh_count, 0);
+    for (size_t i = 0; i < instance_count; ++i)
+        if (coplanar.flagged[i]) {
+            mesh_coplanar[instance_mesh[i]] = 1;
+            ++m_stats.coplanar_objects;
+            m_any_coplanar = true;
+        }
+    const RTCSceneFlags scene_flags = m_hidden_from ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : RTC_SCENE_FLAG_NONE;
+
     m_top = EmbreeScene(rtcNewScene(m_device.get()));
     rtcSetSceneBuildQuality(m_top.get(), RTC_BUILD_QUALITY_HIGH);
-    rtcSetSceneFlags(m_top.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneFlags(m_top.get(), scene_flags);
     rtcSetSceneProgressMonitorFunction(m_top.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
     m_shading.resize(mesh_count);
     std::vector<int32_t> mesh_scene(mesh_count, -1);
-    Affine offset_xf;
-    for (int r = 0; r < 3; ++r) offset_xf.m[r][3] = m_offset[r];
 
     for (size_t i = 0; i < instance_count; ++i) {
         if (cancel && cancel->cancelled()) throw Cancelled();
         const uint32_t m = instance_mesh[i];
         if (ranges[m].tri_begin == ranges[m].tri_end) continue;  // a mesh without faces draws nothing
-        Affine xf = Affine::from_rows(instance_xf + 16 * i);
-        for (int r = 0; r < 3; ++r) xf.m[r][3] += m_offset[r];
+        const Affine xf = instance_transform(i);
         if (!std::isfinite(xf.determinant3()) || std::fabs(xf.determinant3()) < 1e-30f)
             throw InvalidScene("instance " + std::to_string(i) + " has a degenerate (zero-scale) transform");
         Placement pl;
@@ -296,7 +329,6 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         pl.pass_index = pass_index_arr ? pass_index_arr->data<uint32_t>()[i] : 0u;
         const uint8_t flags = flags_arr ? flags_arr->data<uint8_t>()[i] : uint8_t(k_object_default);
         m_has_holdouts |= (flags & k_object_holdout) != 0;
-        m_hidden_from |= ~flags & k_ray_all;
         pl.mirrored = xf.determinant3() < 0.f;
         pl.object_to_world = xf;
         pl.world_to_object = xf.inverse();
@@ -306,7 +338,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             // Single use: flatten into world space, no instancing indirection at render time.
             const Affine nxf = xf.normal_matrix();
             m_shading[m] = make_shading(m, &nxf);
-            RTCGeometry g = make_geometry(m, xf, &pl.magnitude);
+            RTCGeometry g = make_geometry(m, xf, &pl.magnitude, coplanar.flagged[i] != 0);
             const unsigned id = rtcAttachGeometry(m_top.get(), g);
             rtcReleaseGeometry(g);
             m_stats.unique_triangles += n;
@@ -320,10 +352,10 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
                 m_shading[m] = make_shading(m, nullptr);
                 EmbreeScene s(rtcNewScene(m_device.get()));
                 rtcSetSceneBuildQuality(s.get(), RTC_BUILD_QUALITY_HIGH);
-                rtcSetSceneFlags(s.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+                rtcSetSceneFlags(s.get(), scene_flags);
                 rtcSetSceneProgressMonitorFunction(s.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
                 float unused = 0.f;
-                RTCGeometry g = make_geometry(m, Affine(), &unused);
+                RTCGeometry g = make_geometry(m, Affine(), &unused, mesh_coplanar[m] != 0);
                 rtcAttachGeometry(s.get(), g);
                 rtcReleaseGeometry(g);
                 rtcCommitScene(s.get());
@@ -403,12 +435,15 @@ uint32_t Scene::pass_index(const SurfaceHit& hit) const { return m_placements[hi
 bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip) const {
     QueryContext context;
     rtcInitIntersectContext(&context.context);
-    context.context.filter = &Scene::filter_hits;
-    context.skip[0] = skip;
-    context.scene = this;
-    context.origin_magnitude = std::max({std::fabs(ray.o.x), std::fabs(ray.o.y), std::fabs(ray.o.z)});
-    context.dir_length = length(ray.d);
-    if (m_hidden_from & ray.type) {
+    const bool hidden = (m_hidden_from & ray.type) != 0;
+    if (hidden || m_any_coplanar) {
+        context.skip[0] = skip;
+        context.scene = this;
+        context.origin_magnitude = std::max({std::fabs(ray.o.x), std::fabs(ray.o.y), std::fabs(ray.o.z)});
+        context.dir_length = length(ray.d);
+    }
+    if (hidden) {
+        context.context.filter = &Scene::filter_hits;
         context.ray_type = ray.type;
         context.object_flags = m_object_flags.data();
     }
@@ -423,7 +458,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     rh.ray.tfar = ray.tmax;
     rh.ray.time = 0.f;
     rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
+    rh.ray.id = k_query_tag;
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -436,8 +471,10 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     const MeshShading& s = m_shading[pl.mesh];
     const uint32_t prim = rh.hit.primID;
 
-    // The filter widened tfar past the hit (to compare coplanar rivals): the hit's own distance is best_t.
-    hit->t = context.best_t;
+    hit->primitive = {rh.hit.geomID, prim, rh.hit.instID[0]};
+    // A filter widened tfar past the hit it kept (to compare coplanar rivals): that hit's own distance is best_t.
+    // A later hit on an unfiltered object within the widened range is at tfar.
+    hit->t = context.have_best && hit->primitive == context.best ? context.best_t : rh.ray.tfar;
     hit->p = ray.o + ray.d * hit->t;
     Vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     if (pl.instanced) ng = pl.normal_to_world.vector(ng);
@@ -446,7 +483,6 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     hit->ng = len > 0.f ? ng / len : Vec3(0.f, 0.f, 1.f);
     hit->ns = shading_normal(s, pl, prim, rh.hit.u, rh.hit.v, hit->ng);
     hit->material = s.material[prim];
-    hit->primitive = {rh.hit.geomID, prim, rh.hit.instID[0]};
     hit->object = object;
     hit->b1 = rh.hit.u;
     hit->b2 = rh.hit.v;
@@ -457,6 +493,8 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
 
 bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from,
                      const PrimitiveRef& skip_to) const {
+    // The scale-aware origin offset already keeps a shadow ray off its own surface: the skipped triangles matter
+    // only to the coplanar objects' geometry filter (and to the context filter for hidden objects).
     QueryContext context;
     rtcInitIntersectContext(&context.context);
     context.skip[0] = skip_from;
@@ -464,8 +502,8 @@ bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRe
     if (m_hidden_from & k_ray_shadow) {
         context.ray_type = k_ray_shadow;
         context.object_flags = m_object_flags.data();
+        context.context.filter = &Scene::filter_hits;
     }
-    if (skip_from.valid() || skip_to.valid() || context.ray_type != 0) context.context.filter = &Scene::filter_hits;
     RTCRay r;
     r.org_x = o.x;
     r.org_y = o.y;
@@ -477,7 +515,7 @@ bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRe
     r.tfar = tmax;
     r.time = 0.f;
     r.mask = 0xFFFFFFFFu;
-    r.id = 0;
+    r.id = k_query_tag;
     r.flags = 0;
     rtcOccluded1(m_top.get(), &context.context, &r);
     return r.tfar < 0.f;  // Embree sets tfar = −inf on a hit

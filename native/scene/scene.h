@@ -31,6 +31,7 @@ struct SceneStats {
     size_t meshes = 0, instances = 0, emissive_triangles = 0;
     size_t embree_bytes = 0;        // what Embree holds: vertex/index buffers and BVHs (its memory monitor)
     size_t shading_bytes = 0;       // Candela's per-triangle shading data and per-instance placements
+    size_t coplanar_objects = 0;    // objects with a coplanar overlapping rival (they get the tie-break filter)
 };
 
 class Scene : private EmissionSource {
@@ -42,14 +43,15 @@ public:
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
-    /// Closest surface hit along the ray within (ray.tmin, ray.tmax), ignoring the triangle `skip` (the one
-    /// the ray leaves from: with the scale-relative origin offset this removes self-intersection). Surfaces
-    /// whose planes coincide within float rounding at the hit (coplanar overlapping faces) are not told apart by
-    /// distance: an emitting one wins, then the later object, so the choice is the same for every ray. Objects
-    /// invisible to the ray's type (ray.type) are not hit.
+    /// Closest surface hit along the ray within (ray.tmin, ray.tmax). `skip` is the triangle the ray leaves
+    /// from: the scale-relative origin offset (ray_offset.h) already keeps the ray off it, so it is dropped only
+    /// where a filter runs anyway (objects with a coplanar rival, ray types some object is hidden from). Surfaces
+    /// whose planes coincide within float rounding at the hit (coplanar overlapping faces of different objects,
+    /// found at build: coplanar_overlap.h) are not told apart by distance: an emitting one wins, then the later
+    /// object, so the choice is the same for every ray. Objects invisible to the ray's type (ray.type) are not hit.
     bool intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip = {}) const;
-    /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the triangles at both ends and the
-    /// objects invisible to shadow rays.
+    /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the objects invisible to shadow rays
+    /// (and the triangles at both ends where a filter runs, as in intersect()).
     bool occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from = {},
                   const PrimitiveRef& skip_to = {}) const;
     /// Closest emitting side of an area light along the ray before tmax·(1 + 1e-4): its index and distance. The
@@ -89,9 +91,13 @@ private:
     struct Placement;
     struct QueryContext;
     void build(const SceneArrays& arrays, const CancelToken* cancel);
-    /// Embree filter for every query: drops the skipped triangles and, for closest-hit queries, breaks ties
-    /// between coplanar surfaces by a fixed priority instead of float rounding (no z-fighting speckle).
+    /// Embree filter: drops the skipped triangles and hits on objects hidden from the ray's type and, for
+    /// closest-hit queries, breaks ties between coplanar surfaces by a fixed priority instead of float rounding (no
+    /// z-fighting speckle). The context filter of ray types some object is hidden from (it sees every hit).
     static void filter_hits(const RTCFilterFunctionNArguments* args);
+    /// The geometry filter of objects with a coplanar rival (coplanar_overlap.h): filter_hits, for queries without
+    /// a context filter. Other objects' hits are Embree's closest ones, unfiltered.
+    static void coplanar_filter(const RTCFilterFunctionNArguments* args);
     /// Priority among coplanar hits: emitters first, then the later geometry, then the higher triangle index.
     bool outranks(const PrimitiveRef& a, const PrimitiveRef& b) const;
     void add_environment();
@@ -125,6 +131,7 @@ private:
     std::vector<float> m_material_holdout;   // per material (constant weights), or empty (no Holdout closures)
     bool m_has_holdouts = false;
     uint32_t m_hidden_from = 0;              // ray types some object is invisible to (they need the filter)
+    bool m_any_coplanar = false;             // some object has the coplanar geometry filter
     Camera m_camera;
     std::vector<Material> m_materials;
     std::shared_ptr<const ShaderLibrary> m_shaders;
