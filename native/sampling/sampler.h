@@ -70,7 +70,12 @@ public:
         : m_seed(seed), m_spp(samples_per_pixel < 1 ? 1u : uint32_t(samples_per_pixel)) {}
 
     void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
-        m_pixel_key = hash_values(m_seed, (uint64_t(py) << 32) | px, 0x706978656cULL);
+        const uint64_t pixel = (uint64_t(py) << 32) | px;
+        if (pixel != m_pixel || !m_have_pixel) {  // a pixel's samples come in runs: hash it once per run
+            m_pixel_key = hash_values(m_seed, pixel, 0x706978656cULL);
+            m_pixel = pixel;
+            m_have_pixel = true;
+        }
         // One hash per pixel sample; every independent value is then a single SplitMix64 step from it.
         m_sample_key = mix64(m_pixel_key ^ (uint64_t(sample_index) * 0xd1b54a32d192ed03ULL + 0x73616d706c65ULL));
         m_index = sample_index;
@@ -103,6 +108,8 @@ protected:
     uint64_t m_seed;
     uint32_t m_spp;
     uint64_t m_pixel_key = 0;
+    uint64_t m_pixel = 0;  // the (py, px) word m_pixel_key was hashed from
+    bool m_have_pixel = false;
     uint64_t m_sample_key = 0;
     uint32_t m_index = 0;
     uint32_t m_next_dim = k_camera_dimensions;
