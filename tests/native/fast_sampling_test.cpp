@@ -255,7 +255,9 @@ TEST(FastTriangleLight, PreparedLightSamplesLikeUnprepared) {
             ASSERT_NEAR(a.pdf, b.pdf, 1e-5f * b.pdf);
             ASSERT_NEAR(a.dist, b.dist, 1e-5f * b.dist);
             ASSERT_LE(length(a.wi - b.wi), 1e-5f);
-            if (sph) ASSERT_EQ(prepared.pdf_li(ctx, a.wi, a.dist, LightPdfMode::SolidAngle), a.pdf);
+            if (sph) {
+                ASSERT_EQ(prepared.pdf_li(ctx, a.wi, a.dist, LightPdfMode::SolidAngle), a.pdf);
+            }
             ++compared;
         }
     }
