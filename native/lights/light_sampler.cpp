@@ -32,15 +32,8 @@ uint32_t UniformLightSampler::select(const LightSampleContext&, float u, float* 
     return std::min(uint32_t(u * float(m_n)), m_n - 1);
 }
 
-TableLightSampler::TableLightSampler(std::vector<float> weights) : m_dist(std::move(weights)) {}
-
-uint32_t TableLightSampler::select(const LightSampleContext&, float u, float* pmf) const {
-    if (m_dist.size() == 0 || !(m_dist.integral() > 0.f)) {
-        *pmf = 0.f;
-        return 0;
-    }
-    return uint32_t(m_dist.sample_discrete(u, pmf));
-}
+TableLightSampler::TableLightSampler(std::vector<float> weights)
+    : m_dist(std::move(weights)), m_usable(m_dist.size() > 0 && m_dist.integral() > 0.f) {}
 
 // ---- TREE ----------------------------------------------------------------------------------------------
 

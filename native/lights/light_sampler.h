@@ -51,13 +51,20 @@ class TableLightSampler {
 public:
     TableLightSampler() = default;
     explicit TableLightSampler(std::vector<float> weights);
-    uint32_t select(const LightSampleContext&, float u, float* pmf) const;
+    uint32_t select(const LightSampleContext&, float u, float* pmf) const {
+        if (!m_usable) {
+            *pmf = 0.f;
+            return 0;
+        }
+        return uint32_t(m_dist.sample_discrete(u, pmf));
+    }
     float pmf(const LightSampleContext&, uint32_t light) const {
         return light < m_dist.size() ? m_dist.pmf(light) : 0.f;
     }
 
 private:
     Distribution1D m_dist;
+    bool m_usable = false;  // some weight > 0
 };
 
 class TreeLightSampler {

@@ -95,6 +95,7 @@ std::vector<Light> load_blender_lights(const SceneArrays& arrays, const Vec3& of
 uint32_t LightSet::add(Light light) {
     const auto index = static_cast<uint32_t>(m_lights.size());
     if (std::holds_alternative<AreaLight>(light)) m_area_lights.push_back(index);
+    if (auto* tri = std::get_if<TriangleLight>(&light)) tri->prepare();
     if (std::holds_alternative<WorldLight>(light)) {
         if (m_world >= 0) throw InternalError("a scene has one world light");
         m_world = static_cast<int>(index);

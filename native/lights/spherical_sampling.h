@@ -4,8 +4,11 @@
 //   - spherical rectangles: Ureña, Fajardo & King 2013, "An Area-Preserving Parametrization for Spherical
 //     Rectangles", with Cycles' fallbacks (tiny S, grazing);
 //   - spheres: uniform cone of directions (Taylor branch for tiny solid angles), area sampling inside.
-// The spherical computations run in double precision: the inputs are floats, the cost is a handful of
-// trig calls per sample, and double removes most of the cancellation traps (acos near ±1, 1 − cosθ_max).
+// The spherical computations run in double precision: the inputs are floats, and double removes most of the
+// cancellation traps (acos near ±1, 1 − cosθ_max). The spherical triangle, sampled on every next-event
+// estimate toward a near mesh light, replaces libm's double atan2 and sin/cos (each over 100 instructions) by
+// truncated series accurate to ~1e-8 relative (atan) and ~1e-9 (sin, 1 − cos) — below the float resolution
+// of its pdf and direction; the bounds are derived where the series are defined.
 // Every sampler returns pdf = 0 for "no sample" and never NaN/Inf.
 #pragma once
 
@@ -24,20 +27,32 @@ inline constexpr double k_spherical_rectangle_grazing_nz2 = 0.99999;
 /// Sphere cone: below this sin²θ_max use the Taylor expansion of 1 − cosθ_max (pbrt-v4).
 inline constexpr double k_sphere_taylor_sin2 = 0.00068523;
 
-/// Solid angle of the triangle (a, b, c) seen from p, Van Oosterom–Strackee 1983; 0 if degenerate.
-double spherical_triangle_solid_angle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
-
 /// A direction drawn from the solid angle of an emitter with its density; pdf == 0 ⇔ no sample.
 struct SphericalSample {
     Vec3 w;           // unit direction from the reference point
     float pdf = 0.f;  // solid-angle density
 };
 
+/// A triangle (v0, v1, v2) seen from p, prepared once for both the solid angle and sampling: the unit vertex
+/// directions, the triple product a·(b×c) and Ω (Van Oosterom–Strackee; 0 if degenerate). make() is the one
+/// place Ω is computed, so a pdf evaluated from it equals the pdf of a sample drawn from it bit for bit.
+struct SphericalTriangle {
+    double a[3] = {0, 0, 0}, b[3] = {0, 0, 0}, c[3] = {0, 0, 0};
+    double triple = 0;
+    double omega = 0;
+
+    static SphericalTriangle make(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2);
+    /// Uniform direction inside the spherical triangle (Arvo 1995): pdf = 1/Ω.
+    SphericalSample sample(Vec2 u) const;
+};
+
+/// Solid angle of the triangle (a, b, c) seen from p, Van Oosterom–Strackee 1983; 0 if degenerate.
+/// Equal to SphericalTriangle::make(p, a, b, c).omega.
+double spherical_triangle_solid_angle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// Uniform direction inside the spherical triangle (v0, v1, v2) seen from p (Arvo 1995).
 /// pdf = 1/Ω with Ω = spherical_triangle_solid_angle(p, v0, v1, v2) — the value the pdf evaluation uses.
-/// `omega`, if > 0, is spherical_triangle_solid_angle(p, v0, v1, v2) already computed by the caller.
-SphericalSample sample_spherical_triangle(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, Vec2 u,
-                                         double omega = 0.0);
+SphericalSample sample_spherical_triangle(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, Vec2 u);
 
 /// A rectangle (corner s, orthogonal edges ex, ey) prepared for sampling from reference point o
 /// (Ureña et al. 2013). `usable()` says whether solid-angle sampling is robust from o; the pdf evaluation of

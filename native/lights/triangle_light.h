@@ -27,6 +27,7 @@ struct TriangleLight {
     float area = 0.f;
     const EmissionSource* source = nullptr;  // textured emission: radiance evaluated at each sampled point
     uint32_t source_id = 0;
+    float longest_edge_sq = -1.f;  // cached by prepare(); < 0: computed per call
 
     /// Radiance leaving point p (barycentric weights b1, b2 of p1 and p2) toward wo.
     Color Le(const Vec3& p, float b1, float b2, const Vec3& wo) const {
@@ -70,43 +71,45 @@ struct TriangleLight {
     bool spherical_solid_angle(const Vec3& p, double* sr) const {
         if (!is_near(p)) return false;
         *sr = spherical_triangle_solid_angle(p, p0, p1, p2);
-        return *sr > k_min_spherical_triangle_sr && *sr < k_max_spherical_triangle_sr;
+        return in_spherical_range(*sr);
+    }
+    static bool in_spherical_range(double sr) { return sr > k_min_spherical_triangle_sr && sr < k_max_spherical_triangle_sr; }
+
+    /// The longest edge², computed once (prepare()) or, for a light that was not prepared, per call.
+    float longest_edge_squared() const {
+        if (longest_edge_sq >= 0.f) return longest_edge_sq;
+        return std::max(std::max(length_squared(p1 - p0), length_squared(p2 - p1)), length_squared(p0 - p2));
+    }
+    /// Caches the per-triangle constants the per-sample tests use; call after the vertices are set (LightSet::add
+    /// does). The cached value is the per-call expression's (up to FMA contraction, a few ulps); sampling and pdf
+    /// evaluation then read the same value, so their near/far decisions agree exactly.
+    void prepare() {
+        longest_edge_sq = -1.f;
+        longest_edge_sq = longest_edge_squared();
     }
 
+    /// Signed distance from p to the triangle's plane along the normal.
+    float plane_distance(const Vec3& p) const { return dot(p0 - p, normal); }
     /// Longest edge² > (distance from p to the triangle's plane)².
-    bool is_near(const Vec3& p) const {
-        const float longest_sq = std::max(std::max(length_squared(p1 - p0), length_squared(p2 - p1)), length_squared(p0 - p2));
-        const float plane_dist = dot(p0 - p, normal);
-        return longest_sq > plane_dist * plane_dist;
-    }
+    bool is_near(const Vec3& p) const { return is_near(plane_distance(p)); }
+    bool is_near(float plane_dist) const { return longest_edge_squared() > plane_dist * plane_dist; }
 
     LightSample sample_li(const LightSampleContext& ctx, Vec2 u, LightPdfMode mode) const {
-        double sr = 0.0;
-        if (mode == LightPdfMode::Area || !spherical_solid_angle(ctx.p, &sr)) return sample_li(ctx, u);
-        LightSample s;
-        const SphericalSample ss = sample_spherical_triangle(ctx.p, p0, p1, p2, u, sr);
-        if (!(ss.pdf > 0.f)) return s;
-        const float denom = dot(ss.w, normal);
-        const float t = dot(p0 - ctx.p, normal) / denom;
-        if (!(t > 0.f) || !std::isfinite(t)) return s;
-        s.wi = ss.w;
-        s.dist = t;
-        s.pdf = ss.pdf;
-        if (source) {
-            const Vec3 p = ctx.p + ss.w * t;
-            const Vec2 b = barycentrics(p);
-            s.Li = Le(p, b.x, b.y, -ss.w);
-        } else {
-            s.Li = radiance;
-        }
-        return s;
+        if (mode == LightPdfMode::Area) return sample_li(ctx, u);
+        const float plane_dist = plane_distance(ctx.p);
+        if (!is_near(plane_dist)) return sample_li(ctx, u);
+        return sample_li_near(ctx, u, plane_dist);
     }
+    /// SOLID_ANGLE from a point where is_near() holds (plane_dist = plane_distance(ctx.p)): spherical sampling
+    /// if Ω is in range, else area sampling. Out of line (triangle_light.cpp): most shading points are far from
+    /// a mesh light, and the far path stays a small inlinable branch.
+    LightSample sample_li_near(const LightSampleContext& ctx, Vec2 u, float plane_dist) const;
 
     /// Solid-angle pdf of direction wi from ctx.p that hits the triangle at distance t, in `mode`.
     float pdf_li(const LightSampleContext& ctx, const Vec3& wi, float t, LightPdfMode mode) const {
         double sr = 0.0;
         if (mode == LightPdfMode::Area || !spherical_solid_angle(ctx.p, &sr)) return pdf_li(wi, t);
-        const float pdf = float(1.0 / sr);  // the expression sample_spherical_triangle() uses
+        const float pdf = float(1.0 / sr);  // the expression SphericalTriangle::sample() uses
         return std::isfinite(pdf) ? pdf : 0.f;
     }
 

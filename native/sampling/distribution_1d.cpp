@@ -14,33 +14,40 @@ Distribution1D::Distribution1D(std::vector<float> weights) : m_func(std::move(we
     m_cdf.assign(n + 1, 0.f);
     double running = 0.0;  // double: thousands of lights must not lose small weights to rounding
     std::vector<double> cdf(n + 1, 0.0);
+    bool any_zero = false;
     for (size_t i = 0; i < n; ++i) {
         if (!(m_func[i] >= 0.f) || !std::isfinite(m_func[i]))
             throw InvalidScene("distribution weight " + std::to_string(i) + " is negative or not finite");
         running += m_func[i];
         cdf[i + 1] = running;
+        any_zero |= m_func[i] == 0.f;
     }
     m_integral = n ? static_cast<float>(running / n) : 0.f;
     for (size_t i = 1; i <= n; ++i) m_cdf[i] = running > 0.0 ? static_cast<float>(cdf[i] / running) : 0.f;
     if (n) m_cdf[n] = 1.f;
+    m_pmf.resize(n);
+    for (size_t i = 0; i < n; ++i) m_pmf[i] = m_integral > 0.f ? m_func[i] / (m_integral * n) : 0.f;
+    if (any_zero) {
+        // A search that lands on a zero-width bin: at the right edge of an empty run step back to the last
+        // non-zero bin, before the first non-zero bin step forward to it.
+        m_resolve.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            size_t j = i;
+            while (j > 0 && m_func[j] == 0.f) --j;
+            while (j + 1 < n && m_func[j] == 0.f) ++j;
+            m_resolve[i] = static_cast<uint32_t>(j);
+        }
+    }
 }
 
-size_t Distribution1D::find_bin(float u) const {
-    // Largest i with cdf[i] <= u, skipping zero-width bins (cdf[i] == cdf[i+1]).
-    const auto it = std::upper_bound(m_cdf.begin(), m_cdf.end(), u);
-    size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(0, (it - m_cdf.begin()) - 1));
-    i = std::min(i, m_func.size() - 1);
-    while (i > 0 && m_func[i] == 0.f) --i;              // u landed at the right edge of an empty run
-    while (i + 1 < m_func.size() && m_func[i] == 0.f) ++i;  // leading empty bins
-    return i;
+size_t Distribution1D::find_bin_binary(float u) const {
+    const size_t n = m_func.size();
+    return static_cast<size_t>(std::upper_bound(m_cdf.begin() + 1, m_cdf.begin() + n, u) - (m_cdf.begin() + 1));
 }
 
-size_t Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remapped) const {
-    const size_t i = find_bin(u);
+float Distribution1D::remap(float u, size_t i) const {
     const float width = m_cdf[i + 1] - m_cdf[i];
-    if (pmf_out) *pmf_out = pmf(i);
-    if (u_remapped) *u_remapped = width > 0.f ? std::min((u - m_cdf[i]) / width, k_one_minus_epsilon) : 0.f;
-    return i;
+    return width > 0.f ? std::min((u - m_cdf[i]) / width, k_one_minus_epsilon) : 0.f;
 }
 
 float Distribution1D::sample_continuous(float u, float* pdf) const {
