@@ -209,6 +209,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     auto make_geometry = [&](uint32_t m, const Affine& to_space, float* magnitude, bool coplanar) {
         const MeshRange& r = ranges[m];
         RTCGeometry g = rtcNewGeometry(m_device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);  // the object's own BVH (see the top scene below)
         const size_t nv = r.vert_end - r.vert_begin, nt = r.tri_end - r.tri_begin;
         auto* vb = static_cast<float*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
@@ -276,8 +277,12 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         return base;
     };
 
-    // High-quality builds use spatial splits (SBVH), which pay off many times over for large
-    // triangles such as walls and floors: 2.4x the sample rate on the Cornell box.
+    // Acceleration structure: two levels. The top scene is built with RTC_BUILD_QUALITY_LOW, which makes Embree
+    // build one BVH per geometry (object) and a BVH over the objects; each object's own BVH is built with
+    // RTC_BUILD_QUALITY_HIGH (spatial splits, SBVH), which pays off for large triangles such as walls and floors.
+    // Against one high-quality BVH over all triangles (measured, incoherent rays, 1 thread): 1.20x the ray rate
+    // on the Cornell box (8 objects, 32 triangles), equal on 400 small objects in it and on a 317k-triangle
+    // scene, with 3-5x faster builds (objects build separately).
     auto set_object_flags = [&](unsigned id, uint8_t flags) {
         if (m_object_flags.size() <= id) m_object_flags.resize(id + 1, k_object_default);
         m_object_flags[id] = flags;
@@ -311,7 +316,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     const RTCSceneFlags scene_flags = m_hidden_from ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : RTC_SCENE_FLAG_NONE;
 
     m_top = EmbreeScene(rtcNewScene(m_device.get()));
-    rtcSetSceneBuildQuality(m_top.get(), RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(m_top.get(), RTC_BUILD_QUALITY_LOW);  // two levels: a BVH per object, one over them
     rtcSetSceneFlags(m_top.get(), scene_flags);
     rtcSetSceneProgressMonitorFunction(m_top.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
     m_shading.resize(mesh_count);
