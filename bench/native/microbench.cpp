@@ -1,11 +1,13 @@
 // Micro-benchmarks (Google Benchmark) of the per-sample routines a path spends time in outside Embree:
-// pixel-filter sampling, light selection, light sampling and a closest-hit query. `make microbench`.
+// pixel-filter sampling, light selection, light sampling and a closest-hit query; and the scene build's
+// coplanar-overlap detection on its worst case. `make microbench`.
 #include <benchmark/benchmark.h>
 
 #include "core/rng.h"
 #include "film/pixel_filter.h"
 #include "lights/light.h"
 #include "sampling/warp.h"
+#include "scene/coplanar_overlap.h"
 #include "scene/scene.h"
 #include "scene/scene_arrays.h"
 
@@ -77,6 +79,29 @@ void BM_SceneIntersect(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_SceneIntersect);
+
+// Coplanar-overlap detection (scene build) on its worst case: two coplanar n×n-quad grids side by side, touching
+// along an edge, so every face lands in one plane cluster. Arg: n (500 gives a million faces).
+void BM_CoplanarDetectionTwoGrids(benchmark::State& state) {
+    const int n = int(state.range(0));
+    std::vector<float> positions;
+    std::vector<uint32_t> triangles;
+    std::vector<CoplanarObject> objects;
+    for (int g = 0; g < 2; ++g) {
+        const auto v0 = uint32_t(positions.size() / 3), t0 = uint32_t(triangles.size() / 3);
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; j <= n; ++j) positions.insert(positions.end(), {g + float(i) / n, float(j) / n, -2.f});
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                const uint32_t a = v0 + uint32_t(i * (n + 1) + j), c = a + uint32_t(n + 1);
+                triangles.insert(triangles.end(), {a, c, c + 1, a, c + 1, a + 1});
+            }
+        objects.push_back({t0, uint32_t(triangles.size() / 3), Affine()});
+    }
+    for (auto _ : state) benchmark::DoNotOptimize(find_coplanar_rivals(positions.data(), triangles.data(), objects));
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(triangles.size() / 3));
+}
+BENCHMARK(BM_CoplanarDetectionTwoGrids)->Arg(100)->Arg(500)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace candela

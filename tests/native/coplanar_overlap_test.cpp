@@ -229,48 +229,5 @@ TEST(CoplanarOverlap, SceneCountsTheObjectsThatGetTheFilter) {
 namespace candela::test {
 namespace {
 
-// Timing for the record (run with --gtest_also_run_disabled_tests): detection against the whole scene build
-// (which includes it) for ~1M faces, (a) one finely tessellated sphere on a floor with a coplanar decal, (b) two
-// coplanar 500×500-quad grids and a decal (every face in one cluster: the search's worst case).
-TEST(CoplanarOverlap, DISABLED_TimingOfAMillionFaces) {
-    for (const bool grids : {false, true}) {
-        MeshBuilder b;
-        const uint32_t m = b.add_material(Color(0.8f), Color(0.f));
-        if (grids) {
-            const int n = 500;
-            for (int g = 0; g < 2; ++g) {
-                const uint32_t v0 = uint32_t(b.positions.size() / 3);
-                for (int i = 0; i <= n; ++i)
-                    for (int j = 0; j <= n; ++j) b.positions.insert(b.positions.end(), {g + float(i) / n, float(j) / n, -2.f});
-                for (int i = 0; i < n; ++i)
-                    for (int j = 0; j < n; ++j) {
-                        const uint32_t a = v0 + i * (n + 1) + j, c = a + n + 1;
-                        b.triangles.insert(b.triangles.end(), {a, c, c + 1, a, c + 1, a + 1});
-                        b.tri_material.insert(b.tri_material.end(), {m, m});
-                    }
-                b.mesh_tri_start.push_back(uint32_t(b.triangles.size() / 3));
-                b.add_instance(uint32_t(b.mesh_tri_start.size() - 2));
-            }
-        } else {
-            b.add_instance(b.add_sphere(1.f, 1000, 500, m));
-            b.add_instance(b.add_quad_z(-3.f, 3.f, -3.f, 3.f, -1.f, m));
-        }
-        b.add_instance(b.add_quad_z(1.2f, 1.5f, 0.2f, 0.5f, grids ? -2.f : -1.f, m));
-        const SceneArrays arrays = b.arrays();
-        std::vector<CoplanarObject> objects;
-        for (size_t i = 0; i + 1 < b.mesh_tri_start.size(); ++i)
-            objects.push_back({b.mesh_tri_start[i], b.mesh_tri_start[i + 1], Affine()});
-        auto t0 = std::chrono::steady_clock::now();
-        const CoplanarReport r = find_coplanar_rivals(b.positions.data(), b.triangles.data(), objects);
-        const double detect = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        t0 = std::chrono::steady_clock::now();
-        const Scene scene(arrays, basic_params(8, 8, 1, 1), nullptr);
-        const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::printf("%s: %zu faces, detection %.3f s, scene build (with detection) %.3f s, %zu objects flagged\n",
-                    grids ? "grids" : "sphere", r.triangles, detect, build, scene.stats().coplanar_objects);
-        EXPECT_EQ(scene.stats().coplanar_objects, 2u);
-    }
-}
-
 }  // namespace
 }  // namespace candela::test
