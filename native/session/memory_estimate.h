@@ -5,7 +5,7 @@
 // halfway through the BVH build.
 //
 // The per-triangle costs are upper bounds measured on this build (Embree 3.13, RTC_BUILD_QUALITY_HIGH with
-// spatial splits): the peak resident growth of a scene build was 120–165 bytes per triangle, vertex and index
+// spatial splits, since made per object under a two-level top scene; the robustness test re-measures): the peak resident growth of a scene build was 120–165 bytes per triangle, vertex and index
 // buffers and shading data included, for meshes of 65k–1M triangles, from smooth spheres to random triangle
 // soups (tests/robustness/memory_test.cpp measures it again and checks the estimate stays above it); each build
 // thread adds Embree's thread-local allocation blocks (4 MB allowed per thread).
