@@ -78,9 +78,11 @@ SECTIONS = [
      "text": "Continuation rays at the first surface: 1 is path tracing; more rays per camera ray spend more time "
              "on indirect light and less on the pixel area and the first bounce."},
     {"id": "rr_mode", "title": "Russian roulette", "scene": "cornell_box", "samples": 16, "default": "THROUGHPUT",
-     "values": ["OFF", "THROUGHPUT", "ALBEDO"],
+     "values": ["OFF", "THROUGHPUT", "ALBEDO", "SQRT_THROUGHPUT"],
      "text": "Ending paths early without bias: OFF traces every path to the bounce limit; THROUGHPUT continues "
-             "with the probability of the path's throughput; ALBEDO with the surface's reflectance."},
+             "with the probability of the path's throughput; ALBEDO with the surface's reflectance; "
+             "SQRT_THROUGHPUT (Cycles' rule) decides on arrival at a vertex, before its shadow rays, with "
+             "the square root of the throughput."},
 ]
 
 QUICK_SECTIONS = ["sampler", "light_sampling"]

@@ -67,6 +67,9 @@ RR_MODES = [
     ("OFF", "Off", "No Russian roulette: paths end at Max Bounces only", 0),
     ("THROUGHPUT", "Throughput", "Survival probability from the path throughput", 1),
     ("ALBEDO", "Albedo", "Survival probability from the surface's reflectance", 2),
+    ("SQRT_THROUGHPUT", "Square Root Throughput",
+     "Cycles' rule: on arrival at a vertex, continue with probability √(max throughput); "
+     "paths live longer than with Throughput", 3),
 ]
 
 

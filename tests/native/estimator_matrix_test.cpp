@@ -74,7 +74,10 @@ public:
         p.set("branching_factor", int64_t(branching));
         std::string what = name() + ":";
         for (const auto& [key, value] : setting) {
-            p.set(key, value);
+            // Numbers (rr_start_bounce) are integer parameters; everything else is an enum name.
+            const bool integer = !value.empty() && value.find_first_not_of("0123456789") == std::string::npos;
+            if (integer) p.set(key, int64_t(std::stoll(value)));
+            else p.set(key, value);
             what += " " + key + "=" + value;
         }
         if (branching != 1) what += " branching_factor=" + std::to_string(branching);
@@ -181,13 +184,30 @@ TEST(EstimatorMatrix, FourPointLightsEveryCombinationConvergesToOne) {
 
 // Branching at the first surface (stochastic ray tracing): 4 continuation rays, with every sampler (the
 // branches draw their own sample dimensions), light-sampling strategy and roulette mode.
+// SQRT_THROUGHPUT (Cycles' rule, decided on arrival at a vertex) is tested here and in
+// CyclesRouletteConvergesToOne rather than in the full cross product: it changes nothing that light selection
+// or the light pdf interact with.
 TEST(EstimatorMatrix, BranchingFactorFourConvergesToOne) {
     for (FurnaceScene kind : {FurnaceScene::EmissiveSphere, FurnaceScene::FourPointLights}) {
         Matrix m(kind, k_samples);
         for (const auto& sampler : sampler_names())
             for (const char* ls : {"BSDF_ONLY", "LIGHT_ONLY", "MIS"})
-                for (const char* rr : {"THROUGHPUT", "ALBEDO"})
+                for (const char* rr : {"THROUGHPUT", "ALBEDO", "SQRT_THROUGHPUT"})
                     m.run({{"sampler", sampler}, {"light_sampling", ls}, {"rr_mode", rr}}, 4);
+        m.check_pools();
+    }
+}
+
+// Cycles' roulette, with every sampler, light-sampling strategy and roulette start (from the first vertex on,
+// and the default, the third), without branching.
+TEST(EstimatorMatrix, CyclesRouletteConvergesToOne) {
+    for (FurnaceScene kind : {FurnaceScene::EmissiveSphere, FurnaceScene::FourPointLights}) {
+        Matrix m(kind, k_samples);
+        for (const auto& sampler : sampler_names())
+            for (const char* ls : {"BSDF_ONLY", "LIGHT_ONLY", "MIS"})
+                for (const char* start : {"1", "3"})
+                    m.run({{"sampler", sampler}, {"light_sampling", ls}, {"rr_mode", "SQRT_THROUGHPUT"},
+                           {"rr_start_bounce", start}});
         m.check_pools();
     }
 }

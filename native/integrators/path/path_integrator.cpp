@@ -16,8 +16,11 @@ PathSettings PathSettings::from_params(const Params& params) {
     s.rr_start_bounce = params.get<int>("rr_start_bounce", 3);
     if (s.max_bounces < 0 || s.max_bounces > 1024) throw InvalidParameter("max_bounces must be between 0 and 1024");
     if (s.rr_start_bounce < 0) throw InvalidParameter("rr_start_bounce must not be negative");
-    const std::string rr = params.get_enum("rr_mode", "THROUGHPUT", {"OFF", "THROUGHPUT", "ALBEDO"});
-    s.rr_mode = rr == "OFF" ? RouletteMode::Off : rr == "ALBEDO" ? RouletteMode::Albedo : RouletteMode::Throughput;
+    const std::string rr = params.get_enum("rr_mode", "THROUGHPUT", {"OFF", "THROUGHPUT", "ALBEDO", "SQRT_THROUGHPUT"});
+    s.rr_mode = rr == "OFF"               ? RouletteMode::Off
+                : rr == "ALBEDO"          ? RouletteMode::Albedo
+                : rr == "SQRT_THROUGHPUT" ? RouletteMode::SqrtThroughput
+                                          : RouletteMode::Throughput;
     const std::string hs = params.get_enum("hemisphere_sampling", "BSDF", {"UNIFORM", "COSINE", "BSDF"});
     s.hemisphere_sampling = hs == "UNIFORM" ? HemisphereSampling::Uniform
                             : hs == "COSINE" ? HemisphereSampling::Cosine : HemisphereSampling::Bsdf;

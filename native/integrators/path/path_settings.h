@@ -15,8 +15,10 @@ enum class HemisphereSampling { Uniform, Cosine, Bsdf };
 /// next-event estimation only, or both combined by multiple importance sampling.
 enum class LightSampling { BsdfOnly, LightOnly, Mis };
 enum class MisHeuristic { Balance, Power };
-/// Russian roulette: off (max_bounces only), survival by path throughput, or by the surface's albedo.
-enum class RouletteMode { Off, Throughput, Albedo };
+/// Russian roulette: off (max_bounces only), survival by path throughput or by the surface's albedo (both
+/// decided for the continuation ray leaving a vertex), or Cycles' rule: on arrival at a vertex, before its
+/// shadow rays, survival √(max throughput) (Cycles 3.4, path_state_continuation_probability).
+enum class RouletteMode { Off, Throughput, Albedo, SqrtThroughput };
 
 struct PathSettings {
     PixelSampling pixel;

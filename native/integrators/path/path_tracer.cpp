@@ -178,6 +178,17 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
         const float u_rr = roulette_here ? u.roulette : 0.5f;
         const float u_lobe = discrete_here ? u.lobe : 0.5f;
 
+        // Cycles' roulette decides on arrival, before this vertex's shadow rays: with probability
+        // q = min(1, √(max β·Πη²)) the vertex is shaded with β/q, else the path ends here (its emission, added
+        // above, was the last term). E[1{u<q}/q] = 1, so the estimate stays unbiased; the square root keeps dim
+        // paths alive longer than THROUGHPUT does (Cycles: "roughly match typical view transform").
+        const bool arrival_roulette = roulette_here && cfg.rr_mode == RouletteMode::SqrtThroughput;
+        if (arrival_roulette) {
+            const float survive = std::fmin(1.f, std::sqrt(max_component(st.beta) * st.eta_scale));
+            if (!(survive > 0.f) || u_rr >= survive) return;
+            st.beta /= survive;
+        }
+
         // Next-event estimation: k stratified shadow rays, each choosing one light (or, for ALL, k for every
         // light). The contribution of light i is f·Li·|cos|/(k·pmf·pdf), MIS-weighted against the continuation.
         // Returns the sample's visible irradiance share, luminance(Li)·|cos θ|/(k·pdf) (0 if occluded), the
@@ -262,7 +273,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
             next->ward_tested = ward_tested;
             // Branches draw from their own sample dimensions (else they would repeat each other).
             next->dim_offset = st.dim_offset + j * (cfg.max_bounces + 2);
-            if (roulette_here) {
+            if (roulette_here && !arrival_roulette) {
                 const float survive = cfg.rr_mode == RouletteMode::Albedo
                                           ? std::fmin(1.f, max_component(bsdf.albedo(wo_local)))
                                           : std::fmin(1.f, max_component(next->beta) * float(branches) * next->eta_scale);

@@ -10,8 +10,9 @@
 // teaching (hemisphere_sampling). branching_factor > 1 splits the path at the first surface into that many
 // stratified continuations (Cook's stochastic ray tracing), each carrying 1/b of the throughput. Paths end
 // at max_bounces, or by Russian roulette from rr_start_bounce on (Arvo & Kirk 1990) with survival
-// min(1, max throughput·Πη²) or the surface's albedo, which keeps the estimator unbiased for the truncated
-// sum. clamp_indirect (off by default) clamps indirect contributions: biased, fewer fireflies.
+// min(1, max throughput·Πη²) or the surface's albedo for the continuation ray, or Cycles' rule (survival
+// min(1, √(max throughput·Πη²)), decided on arrival at a vertex before its shadow rays), each of which keeps
+// the estimator unbiased for the truncated sum. clamp_indirect (off by default) clamps indirect contributions: biased, fewer fireflies.
 #pragma once
 
 #include "film/aov_film.h"
