@@ -41,6 +41,7 @@ public:
         if (is_black(weight) || !(max_component(weight) > 0.f) || !is_finite(weight)) return true;
         if (m_count >= k_max_lobes) return false;
         m_lobes[size_t(m_count++)] = WeightedLobe{lobe, vmax(weight, Color(0.f))};
+        m_single_lambert = m_count == 1 && std::holds_alternative<LambertBsdf>(lobe);
         // A lobe's flags are fixed by its parameters, which never change after add(): cache them.
         const uint32_t fl = std::visit([](const auto& l) { return l.flags(); }, lobe);
         m_flags |= fl;
@@ -61,7 +62,27 @@ public:
     bool is_delta() const { return m_count > 0 && m_all_delta; }
     bool has_non_delta() const { return m_count > 0 && !is_delta(); }
 
+    // f, pdf and sample: a lone Lambert lobe (the most common material) is evaluated inline here; everything
+    // else goes through the lobe variant out of line (the *_general functions), which keeps these small enough
+    // to inline into the integrators' vertex loops.
     Color f(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
+        if (m_single_lambert) return m_lobes[0].weight * LambertBsdf{}.f(wo, wi, mode);
+        return f_general(wo, wi, mode);
+    }
+    float pdf(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
+        if (m_single_lambert) return LambertBsdf{}.pdf(wo, wi, mode);
+        return pdf_general(wo, wi, mode);
+    }
+    BsdfSample sample(const Vec3& wo, Vec2 u, float uc, TransportMode mode = TransportMode::Radiance) const {
+        if (m_single_lambert) {
+            BsdfSample s = LambertBsdf{}.sample(wo, u, uc, mode);
+            s.f *= m_lobes[0].weight;
+            return s;
+        }
+        return sample_general(wo, u, uc, mode);
+    }
+
+    __attribute__((noinline)) Color f_general(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
         if (m_count == 1)  // one lobe: no mixture bookkeeping (the common diffuse case)
             return m_lobes[0].weight * std::visit([&](const auto& l) { return l.f(wo, wi, mode); }, m_lobes[0].lobe);
         Color sum(0.f);
@@ -72,7 +93,7 @@ public:
         return sum;
     }
 
-    float pdf(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
+    __attribute__((noinline)) float pdf_general(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
         if (m_count == 1) return std::visit([&](const auto& l) { return l.pdf(wo, wi, mode); }, m_lobes[0].lobe);
         std::array<float, k_max_lobes> p;
         if (!selection(wo, p)) return 0.f;
@@ -83,7 +104,7 @@ public:
         return sum;
     }
 
-    BsdfSample sample(const Vec3& wo, Vec2 u, float uc, TransportMode mode = TransportMode::Radiance) const {
+    __attribute__((noinline)) BsdfSample sample_general(const Vec3& wo, Vec2 u, float uc, TransportMode mode) const {
         if (m_count == 1) {  // one lobe: its own sample is exactly the mixture's
             BsdfSample s = std::visit([&](const auto& l) { return l.sample(wo, u, uc, mode); }, m_lobes[0].lobe);
             s.f *= m_lobes[0].weight;
@@ -152,6 +173,7 @@ private:
     int m_count = 0;
     uint32_t m_flags = 0;      // union of the lobes' flags
     bool m_all_delta = true;   // every lobe specular (vacuous when empty; is_delta() checks m_count)
+    bool m_single_lambert = false;  // exactly one lobe, Lambertian: f, pdf and sample take the inline path
 };
 
 /// Mix Shader: (1 − fac)·a + fac·b (fac clamped to [0, 1]).

@@ -22,18 +22,17 @@ inline void sincos_quarter_pi(float x, float* s, float* c) {
 }
 
 /// Uniform point on the unit disk, area density 1/π; concentric map keeps strata compact.
+/// Branch-free: which of |ox|, |oy| is larger is a coin flip per sample (a mispredicted branch half the time),
+/// so both octant cases are one computation with selected operands.
 inline Vec2 sample_uniform_disk_concentric(Vec2 u) {
     const float ox = 2.f * u.x - 1.f, oy = 2.f * u.y - 1.f;
-    if (ox == 0.f && oy == 0.f) return {0.f, 0.f};
+    // |ox| > |oy|: θ = (π/4)(oy/ox) ∈ [−π/4, π/4], point r·(cos θ, sin θ) with r = ox.
+    // Else θ = π/2 − φ with φ = (π/4)(ox/oy) ∈ [−π/4, π/4]: cos θ = sin φ, sin θ = cos φ, r = oy.
+    const bool x_major = std::fabs(ox) > std::fabs(oy);
+    const float r = x_major ? ox : oy, q = x_major ? oy : ox;
     float s, c;
-    if (std::fabs(ox) > std::fabs(oy)) {
-        // θ = (π/4)(oy/ox) ∈ [−π/4, π/4].
-        sincos_quarter_pi((k_pi / 4.f) * (oy / ox), &s, &c);
-        return {ox * c, ox * s};
-    }
-    // θ = π/2 − φ with φ = (π/4)(ox/oy) ∈ [−π/4, π/4]: cos θ = sin φ, sin θ = cos φ.
-    sincos_quarter_pi((k_pi / 4.f) * (ox / oy), &s, &c);
-    return {oy * s, oy * c};
+    sincos_quarter_pi(r != 0.f ? (k_pi / 4.f) * (q / r) : 0.f, &s, &c);  // r = 0 only at the centre (q = 0 too)
+    return {r * (x_major ? c : s), r * (x_major ? s : c)};
 }
 
 /// Cosine-weighted direction about +z (Malley): pdf = cos θ / π.
