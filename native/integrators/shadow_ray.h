@@ -29,10 +29,11 @@ constexpr float k_shadow_epsilon = 1e-4f;
 /// tested along wi to infinity.
 inline bool shadow_ray_blocked(const Scene& scene, const SurfaceHit& hit, const Vec3& origin, const LightSample& ls) {
     if (!std::isfinite(ls.dist)) return scene.occluded(origin, ls.wi, std::numeric_limits<float>::infinity(), hit.primitive);
+    // The segment origin + t·to_light, t ∈ [0, 1 − ε]: Embree takes an unnormalised direction (t is then a fraction
+    // of the segment), which saves normalising it.
     const Vec3 to_light = (hit.p + ls.wi * ls.dist) - origin;
-    const float dist = length(to_light);
-    if (!(dist > 0.f)) return false;
-    return scene.occluded(origin, to_light / dist, dist * (1.f - k_shadow_epsilon), hit.primitive);
+    if (!(length_squared(to_light) > 0.f)) return false;
+    return scene.occluded(origin, to_light, 1.f - k_shadow_epsilon, hit.primitive);
 }
 
 }  // namespace candela

@@ -61,6 +61,14 @@ Camera::Camera(const Params& params, const Affine& camera_to_world) : m_to_world
     m_top += dy;
     // fov spans the viewplane's ±1 axis: 2·atan(0.5·sensor/lens/aspect).
     m_tan_half_fov = (0.5f * sensor / lens) / (m_ortho ? 1.f : aspect);
+    m_raster_to_x = (m_right - m_left) / float(m_width);
+    m_raster_to_y = (m_top - m_bottom) / float(m_height);
+    // A rotation whose columns are orthonormal to 1e-6 keeps |R·d| = |d| to about that: then a perspective ray
+    // direction is normalised once, in camera space, instead of again after the rotation.
+    m_rigid = true;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            m_rigid = m_rigid && std::fabs(dot(m_to_world.column(i), m_to_world.column(j)) - (i == j ? 1.f : 0.f)) <= 1e-6f;
 
     // Depth of field (Blender's Camera > Depth of Field; Cycles' blender_camera_from_object). The keys are read
     // even when it is off, so they never count as unknown.
@@ -93,9 +101,22 @@ void Camera::translate(const Vec3& offset) {
 }
 
 Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {
-    const float sx = m_left + (raster.x / m_width) * (m_right - m_left);
-    const float sy = m_bottom + (raster.y / m_height) * (m_top - m_bottom);
+    const float sx = m_left + raster.x * m_raster_to_x;
+    const float sy = m_bottom + raster.y * m_raster_to_y;
     const bool dof = !m_aperture.is_pinhole();
+    if (!dof && !m_ortho && m_rigid) {
+        // The common case, a rigid pinhole camera: d = R·d_cam/|d_cam|, and the clip distances along the view
+        // axis become distances along d through 1/cos = |d_cam| (d_cam.z = −1).
+        const Vec3 d_cam(sx * m_tan_half_fov, sy * m_tan_half_fov, -1.f);
+        const float len = length(d_cam);
+        Ray ray;
+        ray.type = k_ray_camera;
+        ray.o = m_to_world.translation();
+        ray.d = m_to_world.vector(d_cam) * (1.f / len);
+        ray.tmin = m_clip_start * len;
+        ray.tmax = m_clip_end * len;
+        return ray;
+    }
     const Vec2 lens = dof ? m_aperture.sample(u_lens) : Vec2{0.f, 0.f};
     Ray ray;
     ray.type = k_ray_camera;

@@ -49,6 +49,8 @@ private:
     float m_clip_start = 0.1f, m_clip_end = 1000.f;
     Aperture m_aperture;
     float m_focus_distance = 10.f;
+    float m_raster_to_x = 0.f, m_raster_to_y = 0.f;  // viewplane units per pixel
+    bool m_rigid = false;  // the rotation is orthonormal: it keeps unit vectors unit (generate_ray normalises once)
 };
 
 }  // namespace candela

@@ -51,7 +51,8 @@ public:
     /// object, so the choice is the same for every ray. Objects invisible to the ray's type (ray.type) are not hit.
     bool intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip = {}) const;
     /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the objects invisible to shadow rays
-    /// (and the triangles at both ends where a filter runs, as in intersect()).
+    /// (and the triangles at both ends where a filter runs, as in intersect()). d need not be a unit vector (t is
+    /// then in units of |d|: a segment o → o + d is d with tmax ≤ 1).
     bool occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from = {},
                   const PrimitiveRef& skip_to = {}) const;
     /// Closest emitting side of an area light along the ray before tmax·(1 + 1e-4): its index and distance. The
