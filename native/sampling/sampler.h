@@ -178,6 +178,7 @@ public:
         m_reversed_index = reverse_bits32(sample_index);
         m_premixed_index = sobol_premix(m_reversed_index);
         m_pixel_seed = uint32_t(m_pixel_key);
+        m_ahead_bounce = -1;
         if (m_pixel_seed != m_cache_pixel_seed) {  // the cached seeds are a function of the pixel seed alone
             m_cached_bounces = 0;
             m_cache_pixel_seed = m_pixel_seed;
@@ -206,14 +207,19 @@ public:
     /// seeds depend on the pixel and the bounce only, and a pixel's samples come in runs: the seeds of the first
     /// k_cached_bounces bounces are computed on a run's first visit to a bounce and reused for its other samples.
     BounceSample sample_bounce(int bounce) {
-        if (unsigned(bounce) < unsigned(k_cached_bounces)) {
-            SobolSeedsX8& seeds = m_seed_cache[bounce];
-            if (!((m_cached_bounces >> bounce) & 1u)) {
-                bounce_seeds(bounce, seeds);
-                m_cached_bounces |= 1u << bounce;
-            }
-            return bounce_batch(seeds);
+        if (bounce == m_ahead_bounce) return m_ahead;  // drawn with the previous bounce of this sample
+        if (unsigned(bounce) + 1u < unsigned(k_cached_bounces)) {
+            // A path that reaches this bounce usually reaches the next: draw both now. The two batches are
+            // independent dependency chains (~5 multiply latencies each), which the core overlaps, so the next
+            // vertex gets its values without waiting for a chain of its own.
+            const SobolSeedsX8& seeds = cached_bounce_seeds(bounce);
+            const SobolSeedsX8& next = cached_bounce_seeds(bounce + 1);
+            const BounceSample b = bounce_batch(seeds);
+            m_ahead = bounce_batch(next);
+            m_ahead_bounce = bounce + 1;
+            return b;
         }
+        if (unsigned(bounce) < unsigned(k_cached_bounces)) return bounce_batch(cached_bounce_seeds(bounce));
         return sample_bounce_uncached(bounce);
     }
     /// The same values with the seeds computed on the spot (deep bounces; tests compare the two).
@@ -259,6 +265,14 @@ private:
         const uint32_t base = m_pixel_seed + uint32_t(bounce) * (4u * k_bounce_dimensions * k_sobol_seed_step);
         sobol_seeds_x8_words(base, words.shuffle, words.value, seeds);
     }
+    const SobolSeedsX8& cached_bounce_seeds(int bounce) {
+        SobolSeedsX8& seeds = m_seed_cache[bounce];
+        if (!((m_cached_bounces >> bounce) & 1u)) {
+            bounce_seeds(bounce, seeds);
+            m_cached_bounces |= 1u << bounce;
+        }
+        return seeds;
+    }
     BounceSample bounce_batch(const SobolSeedsX8& seeds) const {
         float v[8];
         sobol_x8_seeded(seeds, m_premixed_index, k_bounce_y_lanes, v);
@@ -279,6 +293,8 @@ private:
     uint32_t m_cache_pixel_seed = 0;  // the pixel seed m_seed_cache belongs to
     uint32_t m_cached_bounces = 0;    // bit b: m_seed_cache[b] holds bounce b's seeds
     FilterSeeds m_filter_seeds{};     // of m_cache_pixel_seed
+    int m_ahead_bounce = -1;          // this pixel sample's bounce whose values m_ahead holds (−1: none)
+    BounceSample m_ahead;
     SobolSeedsX8 m_seed_cache[k_cached_bounces] = {};
     static_assert(k_cached_bounces <= 32, "m_cached_bounces has one bit per cached bounce");
 };
