@@ -70,16 +70,9 @@ public:
         : m_seed(seed), m_spp(samples_per_pixel < 1 ? 1u : uint32_t(samples_per_pixel)) {}
 
     void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
-        const uint64_t pixel = (uint64_t(py) << 32) | px;
-        if (pixel != m_pixel || !m_have_pixel) {  // a pixel's samples come in runs: hash it once per run
-            m_pixel_key = hash_values(m_seed, pixel, 0x706978656cULL);
-            m_pixel = pixel;
-            m_have_pixel = true;
-        }
+        set_pixel_sample(px, py, sample_index);
         // One hash per pixel sample; every independent value is then a single SplitMix64 step from it.
         m_sample_key = mix64(m_pixel_key ^ (uint64_t(sample_index) * 0xd1b54a32d192ed03ULL + 0x73616d706c65ULL));
-        m_index = sample_index;
-        m_next_dim = k_camera_dimensions;
     }
     uint32_t take_dims(uint32_t n) {
         const uint32_t d = m_next_dim;
@@ -89,6 +82,17 @@ public:
     uint32_t samples_per_pixel() const { return m_spp; }
 
 protected:
+    /// start_pixel_sample without the sample key (for samplers that never draw independent values).
+    void set_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
+        const uint64_t pixel = (uint64_t(py) << 32) | px;
+        if (pixel != m_pixel || !m_have_pixel) {  // a pixel's samples come in runs: hash it once per run
+            m_pixel_key = hash_values(m_seed, pixel, 0x706978656cULL);
+            m_pixel = pixel;
+            m_have_pixel = true;
+        }
+        m_index = sample_index;
+        m_next_dim = k_camera_dimensions;
+    }
     /// Seed of one randomisation (purpose 0–3) of one dimension of this pixel: distinct for every (dim, purpose)
     /// (a Weyl step from the random pixel key). Not itself mixed: every consumer (owen_scramble_base2,
     /// permute_index) hashes its seed first, so one hash per randomisation suffices.
@@ -168,11 +172,18 @@ enum BounceNeeds : unsigned { k_need_light_select = 1, k_need_light = 2, k_need_
 
 class SobolSampler : public SamplerBase {
 public:
-    using SamplerBase::SamplerBase;
+    SobolSampler(uint64_t seed, int samples_per_pixel) : SamplerBase(seed, samples_per_pixel) { set_filter_seeds(); }
     void start_pixel_sample(uint32_t px, uint32_t py, uint32_t sample_index) {
-        SamplerBase::start_pixel_sample(px, py, sample_index);
+        set_pixel_sample(px, py, sample_index);  // no sample key: every Sobol value is a function of the index
         m_reversed_index = reverse_bits32(sample_index);
+        m_premixed_index = sobol_premix(m_reversed_index);
         m_pixel_seed = uint32_t(m_pixel_key);
+        m_ahead_bounce = -1;
+        if (m_pixel_seed != m_cache_pixel_seed) {  // the cached seeds are a function of the pixel seed alone
+            m_cached_bounces = 0;
+            m_cache_pixel_seed = m_pixel_seed;
+            set_filter_seeds();
+        }
     }
     // Burley 2020, evaluated in the bit-reversed domain where the scrambles are burley_lsb_hash and sobol_dim0
     // is the reversal itself (sampling/sobol_x8.h spells the steps out):
@@ -182,20 +193,44 @@ public:
     // the same values as the textbook composition with three bit reversals instead of seven.
     float sample_1d(uint32_t dim) const { return sobol_lane(m_pixel_seed, m_reversed_index, dim, false); }
     Vec2 sample_2d(uint32_t dim) const {
+        if (dim == dimension_index(Dim::Filter)) {  // every sample draws it: its seeds are kept per pixel run
+            const FilterSeeds& f = m_filter_seeds;
+            const uint32_t i = reverse_bits32(burley_lsb_hash_tail(m_premixed_index, f.shuffle, f.shuffle_m2));
+            return {fixed_to_float(reverse_bits32(burley_lsb_hash_tail(sobol_premix(i), f.x, f.x_m2))),
+                    fixed_to_float(reverse_bits32(burley_lsb_hash_tail(sobol_premix(sobol_dim1_reversed(i)), f.y, f.y_m2)))};
+        }
         const uint32_t i = reverse_bits32(burley_lsb_hash(m_reversed_index, sobol_seed(m_pixel_seed, dim, 1)));
         return {fixed_to_float(reverse_bits32(burley_lsb_hash(i, sobol_seed(m_pixel_seed, dim, 2)))),
                 fixed_to_float(reverse_bits32(burley_lsb_hash(sobol_dim1_reversed(i), sobol_seed(m_pixel_seed, dim, 3))))};
     }
-    /// Every per-bounce value of `bounce` in one 8-lane batch: the same values as the single draws.
-    BounceSample sample_bounce(int bounce) const {
-        const uint32_t select = dimension_index(Dim::LightSelect, bounce), light = dimension_index(Dim::Light, bounce),
-                       bsdf = dimension_index(Dim::Bsdf, bounce);
-        const uint32_t dims[8] = {select, light, light, bsdf, bsdf, dimension_index(Dim::Roulette, bounce),
-                                  dimension_index(Dim::BsdfLobe, bounce), select};
-        float v[8];
-        sobol_x8(m_pixel_seed, m_reversed_index, dims, /*y lanes: light.y, bsdf.y*/ (1u << 2) | (1u << 4), v);
-        return {v[0], {v[1], v[2]}, {v[3], v[4]}, v[5], v[6]};
+    /// Every per-bounce value of `bounce` in one 8-lane batch: the same values as the single draws. The batch's
+    /// seeds depend on the pixel and the bounce only, and a pixel's samples come in runs: the seeds of the first
+    /// k_cached_bounces bounces are computed on a run's first visit to a bounce and reused for its other samples.
+    BounceSample sample_bounce(int bounce) {
+        if (bounce == m_ahead_bounce) return m_ahead;  // drawn with the previous bounce of this sample
+        if (unsigned(bounce) + 1u < unsigned(k_cached_bounces)) {
+            // A path that reaches this bounce usually reaches the next: draw both now. The two batches are
+            // independent dependency chains (~5 multiply latencies each), which the core overlaps, so the next
+            // vertex gets its values without waiting for a chain of its own.
+            const SobolSeedsX8& seeds = cached_bounce_seeds(bounce);
+            const SobolSeedsX8& next = cached_bounce_seeds(bounce + 1);
+            const BounceSample b = bounce_batch(seeds);
+            m_ahead = bounce_batch(next);
+            m_ahead_bounce = bounce + 1;
+            return b;
+        }
+        if (unsigned(bounce) < unsigned(k_cached_bounces)) return bounce_batch(cached_bounce_seeds(bounce));
+        return sample_bounce_uncached(bounce);
     }
+    /// The same values with the seeds computed on the spot (deep bounces; tests compare the two).
+    BounceSample sample_bounce_uncached(int bounce) const {
+        SobolSeedsX8 seeds;
+        bounce_seeds(bounce, seeds);
+        return bounce_batch(seeds);
+    }
+    /// Bounces whose batch seeds are cached per pixel run (4·32 bytes each: the sampler is ~1.2 KB, copied only
+    /// when a tile pass makes its replicate samplers). Deeper bounces compute their seeds on every draw.
+    static constexpr int k_cached_bounces = 8;
 
 protected:
     /// The scramble seeds of request `dim` in this pixel (index shuffle, first and second coordinate).
@@ -207,13 +242,67 @@ protected:
     }
 
 private:
+    // The batch's lanes: LightSelect, Light x, Light y, Bsdf x, Bsdf y, Roulette, BsdfLobe, LightSelect again.
+    static constexpr uint32_t k_bounce_y_lanes = (1u << 2) | (1u << 4);  // light.y, bsdf.y
+    /// The seeds' hash inputs (4·dim + purpose)·φ of bounce 0's lanes; bounce b adds 4·k_bounce_dimensions·b·φ to
+    /// every lane (mod 2³², like sobol_seed's own arithmetic), folded into the broadcast pixel seed.
+    struct BounceWords {
+        uint32_t shuffle[8], value[8];
+    };
+    static constexpr BounceWords bounce_words() {
+        constexpr uint32_t dims[8] = {uint32_t(Dim::LightSelect), uint32_t(Dim::Light), uint32_t(Dim::Light),
+                                      uint32_t(Dim::Bsdf),        uint32_t(Dim::Bsdf),  uint32_t(Dim::Roulette),
+                                      uint32_t(Dim::BsdfLobe),    uint32_t(Dim::LightSelect)};
+        BounceWords w{};
+        for (int k = 0; k < 8; ++k) {
+            w.shuffle[k] = (4u * dims[k] + 1u) * k_sobol_seed_step;
+            w.value[k] = (4u * dims[k] + (((k_bounce_y_lanes >> k) & 1u) != 0 ? 3u : 2u)) * k_sobol_seed_step;
+        }
+        return w;
+    }
+    static_assert(uint32_t(Dim::LightSelect) >= k_camera_dimensions, "every batch lane is a per-bounce dimension");
+    void bounce_seeds(int bounce, SobolSeedsX8& seeds) const {
+        static constexpr BounceWords words = bounce_words();
+        const uint32_t base = m_pixel_seed + uint32_t(bounce) * (4u * k_bounce_dimensions * k_sobol_seed_step);
+        sobol_seeds_x8_words(base, words.shuffle, words.value, seeds);
+    }
+    const SobolSeedsX8& cached_bounce_seeds(int bounce) {
+        SobolSeedsX8& seeds = m_seed_cache[bounce];
+        if (!((m_cached_bounces >> bounce) & 1u)) {
+            bounce_seeds(bounce, seeds);
+            m_cached_bounces |= 1u << bounce;
+        }
+        return seeds;
+    }
+    BounceSample bounce_batch(const SobolSeedsX8& seeds) const {
+        float v[8];
+        sobol_x8_seeded(seeds, m_premixed_index, k_bounce_y_lanes, v);
+        return {v[0], {v[1], v[2]}, {v[3], v[4]}, v[5], v[6]};
+    }
+
+    struct FilterSeeds {  // seeds (and burley_m2 of them) of the Filter request: shuffle, x, y
+        uint32_t shuffle, shuffle_m2, x, x_m2, y, y_m2;
+    };
+    void set_filter_seeds() {
+        const Seeds s = seeds(dimension_index(Dim::Filter));
+        m_filter_seeds = {s.shuffle, burley_m2(s.shuffle), s.first, burley_m2(s.first), s.second, burley_m2(s.second)};
+    }
+
     uint32_t m_reversed_index = 0;  // the scrambles work on bit-reversed words: reverse the index once
+    uint32_t m_premixed_index = 0;  // sobol_premix(m_reversed_index): the shuffle hash's first step
     uint32_t m_pixel_seed = 0;      // 32 random bits of the pixel key: sobol_seed() derives every scramble from it
+    uint32_t m_cache_pixel_seed = 0;  // the pixel seed m_seed_cache belongs to
+    uint32_t m_cached_bounces = 0;    // bit b: m_seed_cache[b] holds bounce b's seeds
+    FilterSeeds m_filter_seeds{};     // of m_cache_pixel_seed
+    int m_ahead_bounce = -1;          // this pixel sample's bounce whose values m_ahead holds (−1: none)
+    BounceSample m_ahead;
+    SobolSeedsX8 m_seed_cache[k_cached_bounces] = {};
+    static_assert(k_cached_bounces <= 32, "m_cached_bounces has one bit per cached bounce");
 };
 
 /// The values of one bounce: the Sobol sampler draws them all in one batch, the others only those needed.
 template <class S>
-BounceSample draw_bounce(const S& s, int bounce, unsigned needs) {
+BounceSample draw_bounce(S& s, int bounce, unsigned needs) {
     if constexpr (std::is_same_v<S, SobolSampler>) {
         return s.sample_bounce(bounce);
     } else {

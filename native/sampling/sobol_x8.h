@@ -41,6 +41,30 @@ inline void sobol_x8_scalar(uint32_t pixel_seed, uint32_t reversed_index, const 
     for (int k = 0; k < 8; ++k) out[k] = sobol_lane(pixel_seed, reversed_index, dims[k], ((y_lanes >> k) & 1u) != 0);
 }
 
+/// The batch split in two, so that the part that does not depend on the sample index can be computed once per
+/// pixel and reused by all of its samples (SobolSampler caches it per bounce).
+///
+/// burley_lsb_hash(x, s) = h(x ^ x·c₁ + s) with h(y) = z ^ z·c₃ where z = y·m ^ y·m₂, m = (s >> 16) | 1 and
+/// m₂ = m·c₂: (y·m)·c₂ = y·(m·c₂) mod 2³², so the two multiplies of the middle step run side by side, one less
+/// on the dependency chain. The seed part of a lane is (s, m₂) for the shuffle and for the value scramble.
+struct SobolSeedsX8 {
+    alignas(32) uint32_t shuffle[8];     // s_shuffle per lane
+    alignas(32) uint32_t shuffle_m2[8];  // ((s_shuffle >> 16) | 1)·c₂
+    alignas(32) uint32_t value[8];       // s_value (purpose 2 for x lanes, 3 for y lanes)
+    alignas(32) uint32_t value_m2[8];    // ((s_value >> 16) | 1)·c₂
+};
+inline constexpr uint32_t k_burley_c1 = 0x3d20adeau, k_burley_c2 = 0x05526c56u, k_burley_c3 = 0x53a22864u;
+
+/// The first step of burley_lsb_hash, which for the shuffle depends only on the (reversed) sample index.
+inline uint32_t sobol_premix(uint32_t reversed_index) { return reversed_index ^ reversed_index * k_burley_c1; }
+inline uint32_t burley_m2(uint32_t seed) { return ((seed >> 16) | 1u) * k_burley_c2; }
+/// burley_lsb_hash after its first step, with the seed's m₂ precomputed.
+inline uint32_t burley_lsb_hash_tail(uint32_t x, uint32_t seed, uint32_t m2) {
+    x += seed;
+    x = (x * ((seed >> 16) | 1u)) ^ (x * m2);
+    return x ^ x * k_burley_c3;
+}
+
 #if defined(__AVX2__)
 namespace simd {
 
@@ -54,12 +78,13 @@ inline __m256i hash32(__m256i x) {
     return _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
 }
 
-inline __m256i burley_lsb_hash(__m256i x, __m256i seed) {
-    x = _mm256_xor_si256(x, mul(x, 0x3d20adeau));
+inline __m256i seed_multiplier(__m256i seed) { return _mm256_or_si256(_mm256_srli_epi32(seed, 16), _mm256_set1_epi32(1)); }
+
+/// burley_lsb_hash_tail: x is the input after burley_lsb_hash's first step.
+inline __m256i burley_lsb_hash_tail(__m256i x, __m256i seed, __m256i m2) {
     x = _mm256_add_epi32(x, seed);
-    x = _mm256_mullo_epi32(x, _mm256_or_si256(_mm256_srli_epi32(seed, 16), _mm256_set1_epi32(1)));
-    x = _mm256_xor_si256(x, mul(x, 0x05526c56u));
-    return _mm256_xor_si256(x, mul(x, 0x53a22864u));
+    x = _mm256_xor_si256(_mm256_mullo_epi32(x, seed_multiplier(seed)), _mm256_mullo_epi32(x, m2));
+    return _mm256_xor_si256(x, mul(x, k_burley_c3));
 }
 
 /// Bit reversal of each 32-bit lane: bytes swapped by a shuffle, then each byte's nibbles mirrored by two
@@ -85,30 +110,79 @@ inline __m256i sobol_dim1_reversed(__m256i i) {
     return _mm256_xor_si256(i, _mm256_srli_epi32(i, 16));
 }
 
+inline __m256i lane_mask(uint32_t lanes) {
+    const __m256i lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(lanes)), lane_bits), lane_bits);
+}
+
+inline __m256i load(const uint32_t (&a)[8]) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(a)); }
+inline void store(uint32_t (&a)[8], __m256i v) { _mm256_store_si256(reinterpret_cast<__m256i*>(a), v); }
+
 }  // namespace simd
 #endif
 
-inline void sobol_x8(uint32_t pixel_seed, uint32_t reversed_index, const uint32_t (&dims)[8], uint32_t y_lanes,
-                     float (&out)[8]) {
+/// The seed part of the batch from the seeds' hash inputs: lane k's shuffle seed is hash32(base + shuffle_words[k])
+/// and its value seed hash32(base + value_words[k]); sobol_seed(pixel_seed, dim, purpose) is base = pixel_seed,
+/// word = (4·dim + purpose)·φ. (A caller whose dimensions move together splits the words differently: words mod 2³²
+/// add, so any split of the sum gives the same seeds.)
+inline void sobol_seeds_x8_words(uint32_t base, const uint32_t (&shuffle_words)[8], const uint32_t (&value_words)[8],
+                                 SobolSeedsX8& out) {
 #if defined(__AVX2__)
     using namespace simd;
-    const __m256i dim4 = _mm256_slli_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(dims)), 2);
-    const __m256i lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    const __m256i y = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(y_lanes)), lane_bits), lane_bits);
-    // (4·dim + purpose)·φ + pixel_seed, purpose 1 for the shuffle, 2 or 3 (x or y lane) for the value.
-    const __m256i base = _mm256_set1_epi32(int(pixel_seed));
-    const __m256i purpose_value = _mm256_sub_epi32(_mm256_set1_epi32(2), y);  // y lanes are all ones (−1): 3
-    const __m256i s_shuffle = hash32(_mm256_add_epi32(base, mul(_mm256_add_epi32(dim4, _mm256_set1_epi32(1)), k_sobol_seed_step)));
-    const __m256i s_value = hash32(_mm256_add_epi32(base, mul(_mm256_add_epi32(dim4, purpose_value), k_sobol_seed_step)));
-    const __m256i i = reverse_bits(burley_lsb_hash(_mm256_set1_epi32(int(reversed_index)), s_shuffle));
-    const __m256i input = _mm256_blendv_epi8(i, sobol_dim1_reversed(i), y);
-    const __m256i v = reverse_bits(burley_lsb_hash(input, s_value));
+    const __m256i b = _mm256_set1_epi32(int(base));
+    const __m256i s_shuffle = hash32(_mm256_add_epi32(b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(shuffle_words))));
+    const __m256i s_value = hash32(_mm256_add_epi32(b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(value_words))));
+    store(out.shuffle, s_shuffle);
+    store(out.shuffle_m2, mul(seed_multiplier(s_shuffle), k_burley_c2));
+    store(out.value, s_value);
+    store(out.value_m2, mul(seed_multiplier(s_value), k_burley_c2));
+#else
+    for (int k = 0; k < 8; ++k) {
+        out.shuffle[k] = hash32(base + shuffle_words[k]);
+        out.shuffle_m2[k] = burley_m2(out.shuffle[k]);
+        out.value[k] = hash32(base + value_words[k]);
+        out.value_m2[k] = burley_m2(out.value[k]);
+    }
+#endif
+}
+
+/// The seed part of the batch for lanes at dimensions dims with y lanes y_lanes (bit k: lane k is a y lane).
+inline void sobol_seeds_x8(uint32_t pixel_seed, const uint32_t (&dims)[8], uint32_t y_lanes, SobolSeedsX8& out) {
+    uint32_t shuffle_words[8], value_words[8];
+    for (int k = 0; k < 8; ++k) {
+        shuffle_words[k] = (4u * dims[k] + 1u) * k_sobol_seed_step;
+        value_words[k] = (4u * dims[k] + (((y_lanes >> k) & 1u) != 0 ? 3u : 2u)) * k_sobol_seed_step;
+    }
+    sobol_seeds_x8_words(pixel_seed, shuffle_words, value_words, out);
+}
+
+/// The batch from its seed part: out[k] = sobol_lane(pixel_seed, reversed_index, dims[k], bit k of y_lanes) for the
+/// pixel_seed and dims `seeds` were made from, with premixed = sobol_premix(reversed_index).
+inline void sobol_x8_seeded(const SobolSeedsX8& seeds, uint32_t premixed, uint32_t y_lanes, float (&out)[8]) {
+#if defined(__AVX2__)
+    using namespace simd;
+    const __m256i s_value = load(seeds.value);
+    const __m256i i = reverse_bits(burley_lsb_hash_tail(_mm256_set1_epi32(int(premixed)), load(seeds.shuffle), load(seeds.shuffle_m2)));
+    const __m256i input = _mm256_blendv_epi8(i, sobol_dim1_reversed(i), lane_mask(y_lanes));
+    const __m256i v = reverse_bits(burley_lsb_hash_tail(_mm256_xor_si256(input, mul(input, k_burley_c1)), s_value, load(seeds.value_m2)));
     // fixed_to_float: the top 24 bits, exactly representable, times 2⁻²⁴.
     const __m256 f = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_srli_epi32(v, 8)), _mm256_set1_ps(0x1p-24f));
     _mm256_storeu_ps(out, f);
 #else
-    sobol_x8_scalar(pixel_seed, reversed_index, dims, y_lanes, out);
+    for (int k = 0; k < 8; ++k) {
+        const uint32_t i = reverse_bits32(burley_lsb_hash_tail(premixed, seeds.shuffle[k], seeds.shuffle_m2[k]));
+        const uint32_t input = ((y_lanes >> k) & 1u) != 0 ? sobol_dim1_reversed(i) : i;
+        out[k] = fixed_to_float(reverse_bits32(burley_lsb_hash_tail(sobol_premix(input), seeds.value[k], seeds.value_m2[k])));
+    }
 #endif
+}
+
+/// out[k] = sobol_lane(pixel_seed, reversed_index, dims[k], bit k of y_lanes), seeds computed on the spot.
+inline void sobol_x8(uint32_t pixel_seed, uint32_t reversed_index, const uint32_t (&dims)[8], uint32_t y_lanes,
+                     float (&out)[8]) {
+    SobolSeedsX8 seeds;
+    sobol_seeds_x8(pixel_seed, dims, y_lanes, seeds);
+    sobol_x8_seeded(seeds, sobol_premix(reversed_index), y_lanes, out);
 }
 
 }  // namespace candela

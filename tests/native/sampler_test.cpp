@@ -444,12 +444,9 @@ TEST(SobolSampler, EqualsTheTextbookComposition) {
 namespace candela {
 
 TEST(SobolSampler, EightLaneBatchEqualsOneLaneAtATime) {
-    // The SIMD batch (sampling/sobol_x8.h) must reproduce its scalar definition bit for bit: any lane mix-up,
-    // wrong constant or shift shows as a mismatch on some of these random inputs. Without AVX2 the batch is the
-    // scalar loop itself and there is nothing to compare.
-#if !defined(__AVX2__)
-    GTEST_SKIP() << "built without AVX2: sobol_x8 is sobol_x8_scalar";
-#endif
+    // The batch (sampling/sobol_x8.h: SIMD with AVX2, else the split scalar form with precomputed seed
+    // multiples) must reproduce its one-lane definition bit for bit: any lane mix-up, wrong constant, shift or
+    // mis-split hash step shows as a mismatch on some of these random inputs.
     Pcg32 rng(5, 9);
     for (int trial = 0; trial < 20000; ++trial) {
         uint32_t dims[8];
@@ -475,6 +472,53 @@ TEST(SobolSampler, BounceBatchEqualsTheNamedDraws) {
             EXPECT_EQ(b.bsdf.y, get_2d(s, Dim::Bsdf, bounce).y);
             EXPECT_EQ(b.roulette, get_1d(s, Dim::Roulette, bounce));
             EXPECT_EQ(b.lobe, get_1d(s, Dim::BsdfLobe, bounce));
+        }
+    }
+}
+
+TEST(SobolSampler, CachedBounceSeedsEqualTheUncachedBatch) {
+    // sample_bounce caches the seeds of the first k_cached_bounces bounces per pixel run, sample_2d those of the
+    // Filter request. Visit pixels the way
+    // the tile renderer does (runs of a pixel's samples, interleaved samplers, a return to an earlier pixel)
+    // and bounces out of order, below and beyond the cached range: every batch must equal the batch with seeds
+    // computed on the spot, and the named one-at-a-time draws. A cache not reset on a pixel change, a wrong slot or a
+    // stale bit shows as a mismatch.
+    constexpr int k_deep = SobolSampler::k_cached_bounces + 3;
+    struct Visit {
+        uint32_t px, py, index;
+    };
+    const Visit visits[] = {{3, 4, 0}, {3, 4, 1}, {3, 4, 2}, {9, 4, 0}, {9, 4, 5}, {3, 4, 3}, {3, 5, 0}, {3, 5, 1}};
+    const int bounce_order[] = {0, 1, 2, 5, 3, k_deep - 1, 4, 7, 6, 2, 0, SobolSampler::k_cached_bounces, 1, 60, 7};
+    SobolProbe cached(23, 64);
+    for (const Visit& v : visits) {
+        cached.start_pixel_sample(v.px, v.py, v.index);
+        SobolSampler fresh(23, 64);
+        fresh.start_pixel_sample(v.px, v.py, v.index);
+        // The Filter request's seeds are kept per pixel run too.
+        const auto seeds = cached.seeds(dimension_index(Dim::Filter));
+        const uint32_t i = owen_scramble_fast(v.index, seeds.shuffle);
+        const Vec2 filter = cached.sample_2d(dimension_index(Dim::Filter));
+        ASSERT_EQ(filter.x, fixed_to_float(owen_scramble_fast(sobol_dim0(i), seeds.first))) << v.px << "," << v.py;
+        ASSERT_EQ(filter.y, fixed_to_float(owen_scramble_fast(sobol_dim1(i), seeds.second))) << v.px << "," << v.py;
+        for (int bounce : bounce_order) {
+            const BounceSample a = cached.sample_bounce(bounce), b = fresh.sample_bounce_uncached(bounce);
+            const float got[7] = {a.light_select, a.light.x, a.light.y, a.bsdf.x, a.bsdf.y, a.roulette, a.lobe};
+            const float want[7] = {b.light_select, b.light.x, b.light.y, b.bsdf.x, b.bsdf.y, b.roulette, b.lobe};
+            for (int k = 0; k < 7; ++k)
+                ASSERT_EQ(got[k], want[k]) << "pixel " << v.px << "," << v.py << " index " << v.index << " bounce " << bounce << " value " << k;
+            ASSERT_EQ(a.bsdf.y, get_2d(fresh, Dim::Bsdf, bounce).y);
+            ASSERT_EQ(a.lobe, get_1d(fresh, Dim::BsdfLobe, bounce));
+        }
+    }
+    // A copy carries its cache along: still correct for its pixel, and after moving to another pixel.
+    SobolSampler copy = cached;  // (slices the probe: the sampler part is what is copied)
+    SobolSampler fresh(23, 64);
+    for (const Visit& v : {Visit{3, 5, 2}, Visit{40, 41, 0}}) {
+        copy.start_pixel_sample(v.px, v.py, v.index);
+        fresh.start_pixel_sample(v.px, v.py, v.index);
+        for (int bounce = 0; bounce < k_deep; ++bounce) {
+            ASSERT_EQ(copy.sample_bounce(bounce).bsdf.x, fresh.sample_bounce_uncached(bounce).bsdf.x) << bounce;
+            ASSERT_EQ(copy.sample_bounce(bounce).light.y, get_2d(fresh, Dim::Light, bounce).y) << bounce;
         }
     }
 }
