@@ -370,13 +370,7 @@ LightSampler make_light_sampler(const std::string& name, const LightSet& lights,
 
 // ---- light_samples -------------------------------------------------------------------------------------
 
-float light_select_u(float u, uint32_t j, uint32_t k) {
-    if (k <= 1) return std::min(u, k_one_minus_epsilon);
-    return std::min((float(j) + u) / float(k), k_one_minus_epsilon);
-}
-
-Vec2 light_sample_u(Vec2 u2, uint32_t j, uint32_t k) {
-    if (k <= 1) return u2;
+Vec2 light_sample_u_strided(Vec2 u2, uint32_t j, uint32_t k) {
     const double golden = 0.6180339887498949;
     double x = double(u2.x) + double(j) / double(k);
     double y = double(u2.y) + double(j) * golden;

@@ -18,11 +18,13 @@
 // Samplers keep a pointer to the LightSet they were built from: it must outlive them.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "core/math.h"
 #include "lights/light.h"
 #include "lights/light_bounds.h"
 #include "sampling/distribution_1d.h"
@@ -213,10 +215,15 @@ LightSampler make_light_sampler(LightSelection kind, const LightSet& lights, con
 // For MIS with one BSDF sample, the light strategy's density is k·pmf·pdf (light_mis_pdf); with ALL,
 // k·pdf_li per light.
 
-/// The j-th of k stratified selection numbers: (j + u)/k, kept below 1.
-float light_select_u(float u, uint32_t j, uint32_t k);
+/// The j-th of k stratified selection numbers: (j + u)/k, kept below 1. Inline for the common k = 1 (called
+/// several times per path vertex).
+inline float light_select_u(float u, uint32_t j, uint32_t k) {
+    if (k <= 1) return std::min(u, k_one_minus_epsilon);
+    return std::min((float(j) + u) / float(k), k_one_minus_epsilon);
+}
 /// The j-th of k 2-D light-sample numbers: frac(u2 + (j/k, frac(j·φ⁻¹))).
-Vec2 light_sample_u(Vec2 u2, uint32_t j, uint32_t k);
+Vec2 light_sample_u_strided(Vec2 u2, uint32_t j, uint32_t k);
+inline Vec2 light_sample_u(Vec2 u2, uint32_t j, uint32_t k) { return k <= 1 ? u2 : light_sample_u_strided(u2, j, k); }
 /// The light strategy's density for the power heuristic with k light samples per vertex.
 inline float light_mis_pdf(float selection_pmf, float pdf_li, uint32_t k) { return float(k) * selection_pmf * pdf_li; }
 

@@ -215,6 +215,15 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
             L += c;
             return double(luminance(ls.Li)) * std::fabs(wi_local.z) / (double(k) * double(ls.pdf));
         };
+        // Continue the path (at the first surface, in branching_factor stratified branches). The first (usually
+        // only) continuation direction is drawn here, before next-event estimation, although it is used after:
+        // nothing in between depends on it, and its latency chain (a division, a polynomial, a square root for a
+        // diffuse lobe) then overlaps the light sample instead of stalling the continuation.
+        const int branches = bounce == 0 ? cfg.branching_factor : 1;
+        const BsdfSample first_continuation =
+            sample_continuation(cfg.hemisphere_sampling, bsdf, wo_local, light_sample_u(u_bsdf, 0u, uint32_t(branches)),
+                                light_select_u(u_lobe, 0u, uint32_t(branches)));
+
         int ward_tested = 0;
         if (nee_here) {
             if (ward) {
@@ -253,11 +262,11 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
             }
         }
 
-        // Continue the path (at the first surface, in branching_factor stratified branches).
-        const int branches = bounce == 0 ? cfg.branching_factor : 1;
         auto continuation = [&](int j, Ray* next_ray, PathState* next) __attribute__((always_inline)) {
-            const BsdfSample bs = sample_continuation(cfg.hemisphere_sampling, bsdf, wo_local,
-                                                      light_sample_u(u_bsdf, uint32_t(j), uint32_t(branches)), light_select_u(u_lobe, uint32_t(j), uint32_t(branches)));
+            const BsdfSample bs = j == 0 ? first_continuation
+                                         : sample_continuation(cfg.hemisphere_sampling, bsdf, wo_local,
+                                                               light_sample_u(u_bsdf, uint32_t(j), uint32_t(branches)),
+                                                               light_select_u(u_lobe, uint32_t(j), uint32_t(branches)));
             if (!bs.valid() || is_black(bs.f)) return false;
             const Vec3 wi = frame.to_world(bs.wi);
             // The sampled side (reflection: +ng, transmission: −ng) must agree with the geometry: a leak else.
