@@ -45,17 +45,20 @@ inline float area_to_solid_angle(float pdf_area, float dist_sq, float cos_light)
 inline LightSample sample_from_area_point(const Vec3& ref, const Vec3& p, const Vec3& n, float area,
                                           const Color& radiance, bool two_sided) {
     LightSample s;
-    Vec3 w = p - ref;
+    const Vec3 w = p - ref;
     const float d2 = length_squared(w);
     if (!(d2 > 0.f)) return s;
     const float d = std::sqrt(d2);
-    w = w / d;
-    const float cos_l = two_sided ? std::fabs(dot(w, n)) : -dot(w, n);
-    if (cos_l <= 0.f) return s;  // the back of a one-sided emitter
-    const float pdf = area_to_solid_angle(1.f / area, d2, cos_l);
+    const float inv_d = 1.f / d;
+    const float dn = dot(w, n);
+    const float cos_l = (two_sided ? std::fabs(dn) : -dn) * inv_d;
+    // The back of a one-sided emitter, or grazing: area_to_solid_angle's threshold. p_ω = d²/(A·cos θ_l) in one
+    // division (the two divisions here are independent, so their latencies overlap).
+    if (!(cos_l > 1e-7f)) return s;
+    const float pdf = d2 / (area * cos_l);
     if (!(pdf > 0.f) || !std::isfinite(pdf)) return s;
     s.pdf = pdf;
-    s.wi = w;
+    s.wi = w * inv_d;
     s.dist = d;
     s.Li = radiance;
     return s;
