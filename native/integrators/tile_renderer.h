@@ -72,7 +72,12 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                     for (int x = tile.x0; x < tile.x1; ++x) {
                         const int fx = film.origin_x() + x, fy = film.origin_y() + y;  // full-frame pixel
                         PixelAccum& acc = accum[size_t(y - tile.y0) * tile.width() + (x - tile.x0)];
-                        for (int s = begin; s < end; ++s) {
+                        // The pass's samples of this pixel, replicate by replicate (sample indices begin..end−1
+                        // with s mod k_noise_replicates = r): each replicate's sampler then sees its samples of
+                        // the pixel as one run, which is what its per-pixel caches (Sobol seeds) amortise over.
+                        // Only the order of the film's sums changes with this, not which samples are taken.
+                        for (int first = begin; first < std::min(end, begin + int(k_noise_replicates)); ++first)
+                        for (int s = first; s < end; s += int(k_noise_replicates)) {
                             const uint32_t replicate = noise_replicate_of(uint32_t(s));
                             Sampler& sampler = replicates[replicate];
                             // Positioning and the filter draw in one visit, so the draw inlines.
