@@ -1,5 +1,7 @@
 #include "scene/coplanar_overlap.h"
 
+#include "core/error.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -100,11 +102,12 @@ struct Ref {
 class Search {
 public:
     Search(const float* positions, const uint32_t* triangles, const std::vector<CoplanarObject>& objects,
-           CoplanarReport* report)
-        : m_positions(positions), m_triangles(triangles), m_objects(objects), m_report(report) {}
+           CoplanarReport* report, const CancelToken* cancel)
+        : m_positions(positions), m_triangles(triangles), m_objects(objects), m_report(report), m_cancel(cancel) {}
 
     void run() {
         collect();
+        check_cancel();
         if (!(m_td > 0.0)) return;
         std::sort(m_entries.begin(), m_entries.end(), [](const Entry& a, const Entry& b) {
             return a.key != b.key ? a.key < b.key : a.d_lo < b.d_lo;
@@ -140,6 +143,7 @@ private:
             const CoplanarObject& o = m_objects[i];
             Box& box = m_boxes[i];
             for (uint32_t t = o.tri_begin; t < o.tri_end; ++t) {
+                if ((t & 0xFFFFu) == 0) check_cancel();  // ~10 ms of work between checks
                 const Face f = make_face(m_positions, m_triangles, o, t);
                 if (!f.ok) continue;
                 for (int k = 0; k < 3; ++k)
@@ -345,6 +349,10 @@ private:
     const uint32_t* m_triangles;
     const std::vector<CoplanarObject>& m_objects;
     CoplanarReport* m_report;
+    const CancelToken* m_cancel;
+    void check_cancel() const {
+        if (m_cancel && m_cancel->cancelled()) throw Cancelled();
+    }
     double m_td = 0.0;  // distance tolerance
     size_t m_work = 0;
     std::vector<Entry> m_entries;
@@ -367,7 +375,8 @@ private:
 }  // namespace
 
 CoplanarReport find_coplanar_rivals(const float* positions, const uint32_t* triangles,
-                                    const std::vector<CoplanarObject>& objects, size_t max_triangles) {
+                                    const std::vector<CoplanarObject>& objects, size_t max_triangles,
+                                    const CancelToken* cancel) {
     CoplanarReport report;
     report.flagged.assign(objects.size(), 0);
     size_t nonempty = 0;
@@ -381,7 +390,7 @@ CoplanarReport find_coplanar_rivals(const float* positions, const uint32_t* tria
         for (size_t i = 0; i < objects.size(); ++i) report.flagged[i] = objects[i].tri_end > objects[i].tri_begin;
         return report;
     }
-    Search(positions, triangles, objects, &report).run();
+    Search(positions, triangles, objects, &report, cancel).run();
     return report;
 }
 

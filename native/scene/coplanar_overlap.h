@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/parallel.h"
 #include "core/transform.h"
 
 namespace candela {
@@ -48,9 +49,10 @@ struct CoplanarReport {
 /// transformed). Faces of one object never count against each other. Faces whose normal float rounding leaves
 /// undefined to 1 % (smaller than ~5e-5 of the scene's magnitude across: a fraction of a pixel) are left out.
 /// When the objects hold more than max_triangles faces in all, or the comparisons exceed a fixed budget, the
-/// answer errs on the safe side: objects are flagged without the exact test.
+/// answer errs on the safe side: objects are flagged without the exact test. Throws Cancelled once `cancel`
+/// is cancelled (checked every 65,536 faces).
 CoplanarReport find_coplanar_rivals(const float* positions, const uint32_t* triangles,
                                     const std::vector<CoplanarObject>& objects,
-                                    size_t max_triangles = size_t(1) << 22);
+                                    size_t max_triangles = size_t(1) << 22, const CancelToken* cancel = nullptr);
 
 }  // namespace candela

@@ -305,7 +305,8 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         m_hidden_from |= ~(flags_arr ? flags_arr->data<uint8_t>()[i] : uint8_t(k_object_default)) & k_ray_all;
         coplanar_objects[i] = {ranges[m].tri_begin, ranges[m].tri_end, instance_transform(i)};
     }
-    const CoplanarReport coplanar = find_coplanar_rivals(positions, triangles, coplanar_objects);
+    const CoplanarReport coplanar =
+        find_coplanar_rivals(positions, triangles, coplanar_objects, size_t(1) << 22, cancel);  // Esc stops it too
     std::vector<uint8_t> mesh_coplanar(mesh_count, 0);
     for (size_t i = 0; i < instance_count; ++i)
         if (coplanar.flagged[i]) {

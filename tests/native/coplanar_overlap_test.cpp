@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "core/params.h"
+#include "core/error.h"
 #include "scene/coplanar_overlap.h"
 #include "scene/scene.h"
 #include "test_helpers.h"
@@ -56,6 +57,20 @@ TEST(CoplanarOverlap, OverlappingCoplanarQuadsInTwoObjectsAreFlagged) {
     s.quad_object(Vec3(-0.3f, -1.f, -2.f), Vec3(1.3f, 0, 0), Vec3(0, 3.f, 0));
     s.quad_object(Vec3(-1.f, -1.f, -3.f), Vec3(2.f, 0, 0), Vec3(0, 2.f, 0));  // a parallel quad behind: no rival
     EXPECT_EQ(s.find().flagged, flags({1, 1, 0}));
+}
+
+// Esc during the scene build reaches the detection too: a cancelled token makes it throw Cancelled (before any
+// face is compared), and an untouched token changes nothing.
+TEST(CoplanarOverlap, ACancelledTokenStopsTheDetection) {
+    Soup s;
+    s.quad_object(Vec3(-1.f, -1.f, -2.f), Vec3(1.3f, 0, 0), Vec3(0, 3.f, 0));
+    s.quad_object(Vec3(-0.3f, -1.f, -2.f), Vec3(1.3f, 0, 0), Vec3(0, 3.f, 0));
+    CancelToken token;
+    EXPECT_EQ(find_coplanar_rivals(s.positions.data(), s.triangles.data(), s.objects, size_t(1) << 22, &token).flagged,
+              flags({1, 1}));
+    token.cancel();
+    EXPECT_THROW(find_coplanar_rivals(s.positions.data(), s.triangles.data(), s.objects, size_t(1) << 22, &token),
+                 Cancelled);
 }
 
 TEST(CoplanarOverlap, FacesTurnedAwayFromEachOtherStillOverlap) {
