@@ -41,7 +41,6 @@ public:
         if (is_black(weight) || !(max_component(weight) > 0.f) || !is_finite(weight)) return true;
         if (m_count >= k_max_lobes) return false;
         m_lobes[size_t(m_count++)] = WeightedLobe{lobe, vmax(weight, Color(0.f))};
-        m_single_lambert = m_count == 1 && std::holds_alternative<LambertBsdf>(lobe);
         // A lobe's flags are fixed by its parameters, which never change after add(): cache them.
         const uint32_t fl = std::visit([](const auto& l) { return l.flags(); }, lobe);
         m_flags |= fl;
@@ -66,15 +65,15 @@ public:
     // else goes through the lobe variant out of line (the *_general functions), which keeps these small enough
     // to inline into the integrators' vertex loops.
     Color f(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
-        if (m_single_lambert) return m_lobes[0].weight * LambertBsdf{}.f(wo, wi, mode);
+        if (single_lambert()) return m_lobes[0].weight * LambertBsdf{}.f(wo, wi, mode);
         return f_general(wo, wi, mode);
     }
     float pdf(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
-        if (m_single_lambert) return LambertBsdf{}.pdf(wo, wi, mode);
+        if (single_lambert()) return LambertBsdf{}.pdf(wo, wi, mode);
         return pdf_general(wo, wi, mode);
     }
     BsdfSample sample(const Vec3& wo, Vec2 u, float uc, TransportMode mode = TransportMode::Radiance) const {
-        if (m_single_lambert) {
+        if (single_lambert()) {
             BsdfSample s = LambertBsdf{}.sample(wo, u, uc, mode);
             s.f *= m_lobes[0].weight;
             return s;
@@ -82,6 +81,34 @@ public:
         return sample_general(wo, u, uc, mode);
     }
 
+    /// Directional albedo estimate Σ weight_i·albedo_i(wo) (the lobes' own estimates; for roulette and choices).
+    Color albedo(const Vec3& wo) const {
+        Color sum(0.f);
+        for (int i = 0; i < m_count; ++i) {
+            const WeightedLobe& wl = m_lobes[size_t(i)];
+            sum += wl.weight * std::visit([&](const auto& l) { return l.albedo(wo); }, wl.lobe);
+        }
+        return sum;
+    }
+
+    /// Lobe selection probabilities p_i (false if no lobe can be chosen).
+    bool selection(const Vec3& wo, std::array<float, k_max_lobes>& p) const {
+        float total = 0.f;
+        for (int i = 0; i < m_count; ++i) {
+            const WeightedLobe& wl = m_lobes[size_t(i)];
+            const float a = std::visit([&](const auto& l) { return l.albedo(wo); }, wl.lobe);
+            const float w = luminance(wl.weight) * std::fmax(a, 0.f);
+            p[size_t(i)] = std::isfinite(w) ? w : 0.f;
+            total += p[size_t(i)];
+        }
+        if (!(total > 0.f)) return false;
+        for (int i = 0; i < m_count; ++i) p[size_t(i)] /= total;
+        return true;
+    }
+
+private:
+    /// Exactly one lobe, Lambertian: f, pdf and sample take the inline path.
+    bool single_lambert() const { return m_count == 1 && std::holds_alternative<LambertBsdf>(m_lobes[0].lobe); }
     __attribute__((noinline)) Color f_general(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
         if (m_count == 1)  // one lobe: no mixture bookkeeping (the common diffuse case)
             return m_lobes[0].weight * std::visit([&](const auto& l) { return l.f(wo, wi, mode); }, m_lobes[0].lobe);
@@ -143,37 +170,10 @@ public:
         return s;
     }
 
-    /// Directional albedo estimate Σ weight_i·albedo_i(wo) (the lobes' own estimates; for roulette and choices).
-    Color albedo(const Vec3& wo) const {
-        Color sum(0.f);
-        for (int i = 0; i < m_count; ++i) {
-            const WeightedLobe& wl = m_lobes[size_t(i)];
-            sum += wl.weight * std::visit([&](const auto& l) { return l.albedo(wo); }, wl.lobe);
-        }
-        return sum;
-    }
-
-    /// Lobe selection probabilities p_i (false if no lobe can be chosen).
-    bool selection(const Vec3& wo, std::array<float, k_max_lobes>& p) const {
-        float total = 0.f;
-        for (int i = 0; i < m_count; ++i) {
-            const WeightedLobe& wl = m_lobes[size_t(i)];
-            const float a = std::visit([&](const auto& l) { return l.albedo(wo); }, wl.lobe);
-            const float w = luminance(wl.weight) * std::fmax(a, 0.f);
-            p[size_t(i)] = std::isfinite(w) ? w : 0.f;
-            total += p[size_t(i)];
-        }
-        if (!(total > 0.f)) return false;
-        for (int i = 0; i < m_count; ++i) p[size_t(i)] /= total;
-        return true;
-    }
-
-private:
     std::array<WeightedLobe, k_max_lobes> m_lobes{};
     int m_count = 0;
     uint32_t m_flags = 0;      // union of the lobes' flags
     bool m_all_delta = true;   // every lobe specular (vacuous when empty; is_delta() checks m_count)
-    bool m_single_lambert = false;  // exactly one lobe, Lambertian: f, pdf and sample take the inline path
 };
 
 /// Mix Shader: (1 − fac)·a + fac·b (fac clamped to [0, 1]).
