@@ -1,18 +1,22 @@
 #!/usr/bin/env python3
 """`make bench`: Candela vs Cycles on the example Cornell box, plus the raw Embree ray rate.
 
-    /usr/bin/python3.11 bench/bench.py --build build [--size 256 --samples 64 --threads N --repeats 2]
+    /usr/bin/python3.11 bench/bench.py --build build [--size 256 --samples 64 --threads N --rounds 3]
 
 Same scene, resolution, bounces (12), sample counts, CPU thread count, pixel filter; no denoising, adaptive
-sampling or clamping.  Each engine renders at S and FACTOR*S samples inside ONE Blender process
-(bench/render_timed.py), each render timed with time.perf_counter(); the best of --repeats per count is kept and
+sampling or clamping.  Three configurations render at S and FACTOR*S samples: Cycles, Candela at its defaults
+(light tree) and Candela with Cycles 3.4's light selection (a distribution ∝ power; Cycles' light tree arrived in
+3.5) and Russian roulette (survival √(max throughput) on arrival at a vertex: rr_mode=SQRT_THROUGHPUT).  They run
+*paired*: one Blender process (bench/render_timed.py) renders all three, round after round in alternating order,
+each render timed with time.perf_counter(), and each round gives every configuration
 
     samples/s = W * H * (S2 - S1) / (t2 - t1)
 
-so per-render setup (export, BVH build, kernel load, EXR write) cancels out.  Targets: Candela/Cycles samples/s
->= 2.0 at equal settings; mean linear RGB of the S2 images within 2 %.  Candela renders twice: at its defaults
-(light tree) and with Cycles 3.4's light selection (a distribution ∝ power; Cycles' light tree arrived in 3.5)
-and Russian roulette (survival √(max throughput) on arrival at a vertex: rr_mode=SQRT_THROUGHPUT); both ratios are printed, and the target is judged on the second.  The raw incoherent-ray rate comes from
+so per-render setup (export, BVH build, kernel load, EXR write) cancels out.  The speed ratio is the median over
+the rounds of each round's Candela/Cycles ratio: renders seconds apart share the machine's load, which on a shared
+virtual machine drifts by tens of per cent over minutes.  Targets: Candela/Cycles samples/s >= 2.0 at equal
+settings (the third configuration); mean linear RGB of the S2 images within 2 %.  The ratio of the best times
+over all rounds and the per-CPU-second ratio are printed too.  The raw incoherent-ray rate comes from
 build/bin/candela_bench_rays DUMP_DIR (one JSON line {"rays_per_second": ...}) on a dump of the same scene.
 
 Export numbers (bench/export_bench.py, in Blender): the time a 1-million-triangle mesh takes from Blender's data
@@ -47,11 +51,13 @@ INSTANCE_MEMORY_TOL = 0.10
 def parse_args():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default="build", help="build directory (default: build)")
+    ap.add_argument("--outdir", default=None, help="where results go (default: BUILD/bench)")
     ap.add_argument("--size", type=int, default=256, help="square resolution (default 256)")
     ap.add_argument("--samples", type=int, default=64, help="S, the lower sample count (default 64)")
     ap.add_argument("--factor", type=int, default=5, help="S2 = factor * S (default 5)")
     ap.add_argument("--threads", type=int, default=0, help="threads for both engines (default: all cores)")
-    ap.add_argument("--repeats", type=int, default=2, help="repeats per sample count, best kept (default 2)")
+    ap.add_argument("--rounds", type=int, default=3,
+                    help="paired rounds: every engine renders S1 and S2 once per round (default 3)")
     ap.add_argument("--rays", type=int, default=0, help="rays for candela_bench_rays (default: its own)")
     ap.add_argument("--blender", default=None, help="Blender launcher (default: bin/candela-blender)")
     ap.add_argument("--no-equal", action="store_true",
@@ -210,6 +216,24 @@ def pt_ray_rate(res, s1, s2):
     return None, None
 
 
+def paired_ratios(rounds, num, den):
+    """Per-round samples/s ratio num/den, for the rounds in which both were measured."""
+    out = []
+    for rnd in rounds:
+        sps = rnd.get("samples_per_second", {})
+        if sps.get(num) and sps.get(den):
+            out.append(sps[num] / sps[den])
+    return out
+
+
+def median(xs):
+    if not xs:
+        return None
+    ys = sorted(xs)
+    n = len(ys)
+    return ys[n // 2] if n % 2 else 0.5 * (ys[n // 2 - 1] + ys[n // 2])
+
+
 def fmt_rate(x):
     if x is None:
         return "n/a"
@@ -229,7 +253,7 @@ def fmt(x, spec=".3f"):
 def main():
     a = parse_args()
     build = os.path.abspath(os.path.join(ROOT, a.build) if not os.path.isabs(a.build) else a.build)
-    outdir = os.path.join(build, "bench")
+    outdir = os.path.abspath(a.outdir) if a.outdir else os.path.join(build, "bench")
     os.makedirs(outdir, exist_ok=True)
     threads = a.threads or (len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count())
     s1, s2 = a.samples, a.samples * a.factor
@@ -260,11 +284,11 @@ def main():
         busy = "   WARNING: the machine is busy, timings are unreliable" if load[0] > 0.5 else ""
         print(f"load        {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} (1/5/15 min){busy}")
     print(f"settings    {a.size}x{a.size}, S1 = {s1} spp, S2 = {s2} spp, {threads} threads, 12 bounces, "
-          f"best of {a.repeats}, CPU, no denoising/adaptive sampling/clamping")
+          f"{a.rounds} paired rounds, CPU, no denoising/adaptive sampling/clamping")
     print(flush=True)
 
     report = {"machine": facts, "settings": {"size": a.size, "s1": s1, "s2": s2, "threads": threads,
-                                             "repeats": a.repeats, "max_bounces": 12},
+                                             "rounds": a.rounds, "max_bounces": 12},
               "engines": {}, "errors": []}
     crashed = False
 
@@ -280,53 +304,59 @@ def main():
         write_report(outdir, report)
         return 1
 
-    # 2. Each engine in its own Blender process.
+    # 2. The engines, paired: one Blender process renders Cycles, Candela at its defaults and Candela at Cycles 3.4's
+    # own light selection and Russian roulette, round after round in alternating order, so every ratio compares
+    # renders taken seconds apart under the same machine load.
+    #
+    # Cycles 3.4 has no light tree: it picks lights from a distribution ∝ power (its light tree arrived in 3.5).
+    # Candela's default is the tree, which costs importance evaluations at every vertex and pays off with many
+    # lights; at equal settings Candela selects ∝ power too. Cycles' roulette decides on arrival at a vertex from
+    # the 3rd on, before its shadow rays, with survival √(max throughput); Candela's default (THROUGHPUT) decides
+    # the continuation ray with survival max throughput, which traces ~8 % fewer rays per sample on this scene.
+    # Samples per second are only comparable when both engines trace the same expected number of rays per
+    # sample, so the equal run uses Cycles' rule (rr_mode=SQRT_THROUGHPUT).
     dump_dir = os.path.join(outdir, "cornell_dump")
+    configs = []
+    if "CYCLES" in engines:
+        configs.append("CYCLES=CYCLES")
+    if "CANDELA" in engines:
+        configs.append("CANDELA=CANDELA")
+        if not a.no_equal:
+            configs.append("CANDELA_POWER=CANDELA:light_selection=POWER,rr_mode=SQRT_THROUGHPUT")
+    names = [c.split("=", 1)[0] for c in configs]
+    print(f"[2] {', '.join(names)}: {s1} and {s2} spp, {a.rounds} paired round(s), alternating order")
+    args = ["--blend", blend, "--samples", f"{s1},{s2}", "--out", os.path.join(outdir, "exr"),
+            "--threads", str(threads), "--repeats", str(a.rounds), "--size", str(a.size),
+            "--json", os.path.join(outdir, "renders.json")]
+    for c in configs:
+        args += ["--config", c]
+    if "CANDELA" in engines:
+        shutil.rmtree(dump_dir, ignore_errors=True)
+        args += ["--dump", dump_dir]
+    rc, out = run(blender_cmd(launcher, os.path.join(HERE, "render_timed.py"), args),
+                  os.path.join(outdir, "renders.log"))
+    res = find_json(out)
+    if rc != 0 or res is None:
+        print("[bench] the renders failed:\n" + tail(out))
+        report["errors"].append(f"renders failed (exit {rc})")
+        crashed = True
+    else:
+        report["engines"] = res["configs"]
+        report["rounds"] = res["rounds"]
+        for rnd in res["rounds"]:
+            sps = rnd["samples_per_second"]
+            print(f"    round {rnd['round']} ({' '.join(rnd['order'])}): "
+                  + ", ".join(f"{k} {fmt_rate(sps.get(k))}" for k in names))
+        for key in names:
+            e = res["configs"][key]
+            for s in (s1, s2):
+                print(f"    {key} {s:5d} spp: {e['best_seconds'][str(s)]:.3f} s (best), "
+                      f"mean RGB {', '.join(f'{v:.4f}' for v in e['images'][str(s)]['mean_rgb'])}")
 
-    def render_engine(step, key, engine, extra=()):
-        """Renders S1 and S2 with `engine` (+ render_timed.py args `extra`); stores the result under `key`."""
-        nonlocal crashed
-        print(f"[{step}] {key}: {s1} and {s2} spp, {a.repeats} repeat(s)")
-        args = ["--blend", blend, "--engine", engine, "--samples", f"{s1},{s2}",
-                "--out", os.path.join(outdir, "exr"), "--threads", str(threads), "--repeats", str(a.repeats),
-                "--size", str(a.size), "--json", os.path.join(outdir, f"{key.lower()}.json"), *extra]
-        rc, out = run(blender_cmd(launcher, os.path.join(HERE, "render_timed.py"), args),
-                      os.path.join(outdir, f"{key.lower()}.log"))
-        res = find_json(out)
-        if rc != 0 or res is None:
-            print(f"[bench] {key} failed:\n" + tail(out))
-            report["errors"].append(f"{key} render failed (exit {rc})")
-            crashed = True
-            return
-        report["engines"][key] = res
-        for s in (s1, s2):
-            print(f"    {s:5d} spp: {res['best_seconds'][str(s)]:.3f} s (best), "
-                  f"mean RGB {', '.join(f'{v:.4f}' for v in res['images'][str(s)]['mean_rgb'])}")
-
-    for i, engine in enumerate(engines, start=2):
-        extra = ()
-        if engine == "CANDELA":
-            shutil.rmtree(dump_dir, ignore_errors=True)
-            extra = ("--dump", dump_dir)
-        render_engine(i, engine, engine, extra)
-
-    # 2a. Candela at Cycles 3.4's own light selection and Russian roulette. Cycles 3.4 has no light tree: it
-    # picks lights from a distribution ∝ power (its light tree arrived in 3.5). Candela's default is the tree,
-    # which costs importance evaluations at every vertex and pays off with many lights; at equal settings Candela
-    # selects ∝ power too. Cycles' roulette decides on arrival at a vertex from the 3rd on, before its shadow
-    # rays, with survival √(max throughput); Candela's default (THROUGHPUT) decides the continuation ray with
-    # survival max throughput, which traces ~8 % fewer rays per sample on this scene. Samples per second are
-    # only comparable when both engines trace the same expected number of rays per sample, so the equal run
-    # uses Cycles' rule (rr_mode=SQRT_THROUGHPUT).
-    if "CANDELA" in report["engines"] and not a.no_equal:
-        render_engine(len(engines) + 2, "CANDELA_POWER", "CANDELA",
-                      ("--candela-set", "light_selection=POWER", "--candela-set", "rr_mode=SQRT_THROUGHPUT",
-                       "--tag", "_power"))
-
-    # 2b. Export speed and instancing memory (Candela only, inside Blender).
+    # 3. Export speed and instancing memory (Candela only, inside Blender).
     export = None
     if "CANDELA" in engines and not a.no_export:
-        print(f"[{len(engines) + 2}] export: {a.export_triangles:,} triangles to the native Session; "
+        print(f"[3] export: {a.export_triangles:,} triangles to the native Session; "
               f"1 vs {a.instances:,} instances")
         rc, out = run(blender_cmd(launcher, os.path.join(HERE, "export_bench.py"),
                                   ["--triangles", str(a.export_triangles), "--instances", str(a.instances)]),
@@ -340,7 +370,7 @@ def main():
         else:
             report["export"] = export
 
-    # 3. Raw Embree rate on a dump of the same scene.
+    # 4. Raw Embree rate on a dump of the same scene.
     raw = None
     raw_note = None
     bin_path = os.path.join(build, "bin", "candela_bench_rays")
@@ -353,7 +383,7 @@ def main():
     elif not dump_ok:
         raw_note = raw_note or "no scene dump"
     else:
-        print(f"[{len(engines) + 2}] raw Embree incoherent rays: candela_bench_rays")
+        print("[4] raw Embree incoherent rays: candela_bench_rays")
         cmd = [bin_path, dump_dir] + (["--rays", str(a.rays)] if a.rays else [])
         rc, out = run(cmd, os.path.join(outdir, "bench_rays.log"))
         rj = None
@@ -373,7 +403,7 @@ def main():
             print(tail(out))
             report["errors"].append(raw_note)
 
-    # 4. Results.
+    # 5. Results.
     cyc, can = report["engines"].get("CYCLES"), report["engines"].get("CANDELA")
     cyc_rate, can_rate = rate(cyc, s1, s2), rate(can, s1, s2)
     eq_rate = rate(report["engines"].get("CANDELA_POWER"), s1, s2)
@@ -383,8 +413,12 @@ def main():
     eq_cpu = cpu_rate(report["engines"].get("CANDELA_POWER"), s1, s2)
     default_cpu_ratio = can_cpu / cyc_cpu if can_cpu and cyc_cpu else None
     equal_cpu_ratio = eq_cpu / cyc_cpu if eq_cpu and cyc_cpu else None
-    # The target is judged at equal settings (the same light selection as Cycles 3.4) when that run exists.
-    speed_ratio = equal_ratio if equal_ratio is not None else default_ratio
+    paired_default = paired_ratios(report.get("rounds", []), "CANDELA", "CYCLES")
+    paired_equal = paired_ratios(report.get("rounds", []), "CANDELA_POWER", "CYCLES")
+    paired_default_median, paired_equal_median = median(paired_default), median(paired_equal)
+    # The target is judged on the paired median at equal settings (Cycles 3.4's light selection and roulette)
+    # when that configuration ran, else at Candela's defaults.
+    speed_ratio = paired_equal_median if paired_equal_median is not None else paired_default_median
     cyc_mean = cyc["images"][str(s2)]["mean"] if cyc else None
     can_mean = can["images"][str(s2)]["mean"] if can else None
     bright_ratio = can_mean / cyc_mean if can_mean is not None and cyc_mean else None
@@ -411,9 +445,11 @@ def main():
         "cycles_samples_per_second": cyc_rate,
         "candela_samples_per_second": can_rate,
         "candela_power_samples_per_second": eq_rate,
-        "speed_ratio_defaults": default_ratio, "speed_ratio_equal_light_selection": equal_ratio,
+        "best_time_speed_ratio_defaults": default_ratio, "best_time_speed_ratio_equal_settings": equal_ratio,
+        "paired_speed_ratios_defaults": paired_default, "paired_speed_ratios_equal_settings": paired_equal,
+        "speed_ratio_defaults": paired_default_median, "speed_ratio_equal_settings": paired_equal_median,
         "cpu_samples_per_second": {"CYCLES": cyc_cpu, "CANDELA": can_cpu, "CANDELA_POWER": eq_cpu},
-        "cpu_speed_ratio_defaults": default_cpu_ratio, "cpu_speed_ratio_equal_light_selection": equal_cpu_ratio,
+        "cpu_speed_ratio_defaults": default_cpu_ratio, "cpu_speed_ratio_equal_settings": equal_cpu_ratio,
         "speed_ratio": speed_ratio, "speed_target": SPEED_TARGET, "speed_pass": speed_ok,
         "cycles_mean": cyc_mean, "candela_mean": can_mean,
         "brightness_ratio": bright_ratio, "brightness_ratio_rgb": per_channel,
@@ -438,11 +474,17 @@ def main():
               f"equal light selection {fmt(equal_cpu_ratio)}")
     if eq_rate:
         print(f"Candela samples/s, light selection ∝ power and roulette as Cycles 3.4   {fmt_rate(eq_rate)}")
-        print(f"speed ratio Candela/Cycles at Candela's defaults (light tree)   {fmt(default_ratio)}")
-        print(f"speed ratio Candela/Cycles at equal settings (Cycles 3.4's light selection and roulette)   {fmt(equal_ratio)}"
-              f"   target >= {SPEED_TARGET:.1f}   {verdict(speed_ok)}")
-    else:
-        print(f"speed ratio Candela/Cycles {fmt(speed_ratio)}   target >= {SPEED_TARGET:.1f}   {verdict(speed_ok)}")
+    print("(samples/s above: best time of each count over all rounds)")
+    print(f"best-time speed ratio Candela/Cycles: defaults {fmt(default_ratio)}, equal settings {fmt(equal_ratio)}")
+    if paired_default:
+        print(f"paired speed ratio Candela/Cycles at Candela's defaults (light tree), per round "
+              f"{' '.join(fmt(x) for x in paired_default)}   median {fmt(paired_default_median)}")
+    if paired_equal:
+        print(f"paired speed ratio Candela/Cycles at equal settings (Cycles 3.4's light selection and roulette), "
+              f"per round {' '.join(fmt(x) for x in paired_equal)}")
+        print(f"    median {fmt(paired_equal_median)}   target >= {SPEED_TARGET:.1f}   {verdict(speed_ok)}")
+    elif paired_default:
+        print(f"    median {fmt(paired_default_median)}   target >= {SPEED_TARGET:.1f}   {verdict(speed_ok)}")
     print(f"mean brightness (linear RGB, {s2} spp)  Cycles {fmt(cyc_mean, '.5f')}  Candela {fmt(can_mean, '.5f')}")
     pcs = "" if not per_channel else "  (R/G/B " + " ".join(fmt(x) for x in per_channel) + ")"
     print(f"brightness ratio Candela/Cycles {fmt(bright_ratio, '.4f')}{pcs}   target |r-1| <= "

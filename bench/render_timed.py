@@ -1,19 +1,29 @@
-"""Blender-side helper of bench/bench.py: time renders of one .blend with one engine at several sample counts.
+"""Blender-side helper of bench/bench.py: time renders of one .blend with one or more engines at several sample
+counts.
 
     bin/candela-blender -b --factory-startup --python-exit-code 1 --python bench/render_timed.py -- \
-        --blend X.blend --engine CANDELA|CYCLES --samples 64,320 --out DIR \
+        --blend X.blend --config NAME=ENGINE[:KEY=VALUE,...] [--config ...] --samples 64,320 --out DIR \
         [--threads N] [--repeats 2] [--dump DUMP_DIR] [--json RESULT.json]
 
-For each repeat and each sample count S the helper sets the engine's sample count, then times
+A configuration is an engine (CYCLES, CANDELA, ...) under a name, with Candela settings (scene.candela.KEY) to
+apply on top of the scene's own, e.g. `--config CANDELA_POWER=CANDELA:light_selection=POWER`.  For each repeat
+and each sample count S the helper sets the engine's sample count, then times
 `bpy.ops.render.render(write_still=True)` with time.perf_counter() (EXR, float, RGBA, written to
-DIR/<engine>_<S>.exr).  Setup costs (scene export, BVH build, kernel load, file write) are the same for every
+DIR/<name>_<S>.exr).  Setup costs (scene export, BVH build, kernel load, file write) are the same for every
 sample count, so bench.py takes samples/s = W*H*(S2 - S1) / (t2 - t1) from the best time of each count.
+
+With several configurations the run is *paired*: each repeat is a round in which every configuration renders
+every sample count, in alternating order (A B C, then C B A, ...), all in this one process on one scene.
+Configurations measured seconds apart see the same machine load, so the per-round ratio of their samples/s is far
+steadier on a shared machine than a ratio of runs taken minutes apart; `rounds` lists each round's samples/s per
+configuration (from that round's own S1/S2 pair).
 
 It also reports the mean linear RGB of every EXR written (read back with bpy.data.images.load), the number of
 rays Candela traced (the add-on keeps the last render's native stats in render_loop.last_render_stats), and, with
 --dump, writes a scene dump with bpy.ops.candela.export_dump (tolerating its absence).
 
-The result is printed as one line `RENDER_TIMED_JSON {...}` (and written to --json if given).
+The result is printed as one line `RENDER_TIMED_JSON {...}` (and written to --json if given):
+{"configs": {NAME: result, ...}, "rounds": [...], "samples": [...], "width": W, "height": H}.
 """
 
 import argparse
@@ -39,7 +49,8 @@ def _args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     ap = argparse.ArgumentParser(prog="render_timed.py")
     ap.add_argument("--blend", default=None, help=".blend to open (default: build the Cornell box in memory)")
-    ap.add_argument("--engine", required=True)
+    ap.add_argument("--config", action="append", required=True, metavar="NAME=ENGINE[:KEY=VALUE,...]",
+                    help="a configuration to time; repeatable (several configurations alternate round by round)")
     ap.add_argument("--samples", required=True, help="comma-separated sample counts, e.g. 64,320")
     ap.add_argument("--out", required=True, help="directory for the EXRs")
     ap.add_argument("--threads", type=int, default=0, help="render threads (0 = all cores)")
@@ -47,9 +58,6 @@ def _args():
     ap.add_argument("--size", type=int, default=0, help="override the square resolution (0 = keep)")
     ap.add_argument("--dump", default=None, help="write a Candela scene dump here first (candela.export_dump)")
     ap.add_argument("--json", default=None, help="also write the result to this file")
-    ap.add_argument("--candela-set", action="append", default=[], metavar="KEY=VALUE",
-                    help="set a Candela render setting (scene.candela.KEY) before rendering; repeatable")
-    ap.add_argument("--tag", default="", help="suffix for the EXR names (several runs of one engine)")
     return ap.parse_args(argv)
 
 
@@ -138,9 +146,96 @@ def write_dump(directory):
         return {"ok": False, "error": f"{type(exc).__name__}: {exc}"}
 
 
+def parse_config(spec):
+    """NAME=ENGINE[:KEY=VALUE,...] -> {"name", "engine", "candela": {KEY: VALUE}}."""
+    name, sep, rest = spec.partition("=")
+    if not sep or not name or not rest:
+        raise SystemExit(f"render_timed: --config {spec!r}: expected NAME=ENGINE[:KEY=VALUE,...]")
+    engine, _, settings = rest.partition(":")
+    candela = {}
+    for item in filter(None, settings.split(",")):
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise SystemExit(f"render_timed: --config {spec!r}: setting {item!r} is not KEY=VALUE")
+        candela[key] = value
+    if candela and engine.upper() != "CANDELA":
+        raise SystemExit(f"render_timed: --config {spec!r}: settings are only for CANDELA")
+    return {"name": name.upper(), "engine": engine.upper(), "candela": candela}
+
+
+def select_engine(scene, engine):
+    try:
+        scene.render.engine = engine
+    except TypeError:
+        raise SystemExit(f"render_timed: engine {engine} is not available (add-on not enabled?)")
+    if scene.render.engine != engine:
+        raise SystemExit(f"render_timed: could not select engine {engine}")
+
+
+def candela_settings(scene):
+    """scene.candela's plain settings, {identifier: value}."""
+    props = getattr(scene, "candela", None)
+    settings = {}
+    if props is not None:
+        for prop in props.bl_rna.properties:
+            if prop.identifier == "rna_type" or prop.type in ("POINTER", "COLLECTION"):
+                continue
+            val = getattr(props, prop.identifier, None)
+            if isinstance(val, (int, float, str, bool)):
+                settings[prop.identifier] = val
+    return settings
+
+
+def apply_config(scene, config, baseline):
+    """Selects the configuration's engine; for Candela restores the scene's own settings (`baseline`) and applies
+    the configuration's on top, so one configuration's settings never leak into the next."""
+    select_engine(scene, config["engine"])
+    if config["engine"] != "CANDELA":
+        return
+    props = scene.candela
+    for key, value in baseline.items():
+        if getattr(props, key) != value:
+            setattr(props, key, value)
+    for key, value in config["candela"].items():
+        current = getattr(props, key)  # AttributeError names an unknown setting
+        setattr(props, key, value in ("1", "True", "true") if isinstance(current, bool) else type(current)(value))
+
+
+def engine_settings(scene, engine):
+    """The settings the engine renders with (Candela's after apply_config)."""
+    if engine == "CYCLES":
+        c = scene.cycles
+        return {k: getattr(c, k) for k in (
+            "device", "use_denoising", "use_adaptive_sampling", "sample_clamp_direct", "sample_clamp_indirect",
+            "pixel_filter_type", "filter_width", "max_bounces", "diffuse_bounces", "glossy_bounces",
+            "transmission_bounces", "seed")}
+    if engine == "CANDELA":
+        return candela_settings(scene)
+    return {}
+
+
+def summarise(result, counts):
+    """Best (least) wall and CPU time per sample count, and the mean RGB of each count's best image."""
+    best = {}
+    for e in result["runs"]:
+        s = e["samples"]
+        if s not in best or e["seconds"] < best[s]["seconds"]:
+            best[s] = e
+    result["best_seconds"] = {str(s): best[s]["seconds"] for s in counts}
+    result["best_cpu_seconds"] = {str(s): min(e["cpu_seconds"] for e in result["runs"] if e["samples"] == s)
+                                  for s in counts}
+    result["images"] = {str(s): image_mean_rgb(best[s]["exr"]) for s in counts}
+    rays = {str(s): best[s]["rays"] for s in counts if "rays" in best[s]}
+    if rays:
+        result["rays"] = rays
+
+
 def main():
     a = _args()
-    engine = a.engine.upper()
+    configs = [parse_config(c) for c in a.config]
+    names = [c["name"] for c in configs]
+    if len(set(names)) != len(names):
+        raise SystemExit(f"render_timed: configuration names repeat: {names}")
     counts = [int(s) for s in a.samples.split(",") if s.strip()]
     os.makedirs(a.out, exist_ok=True)
 
@@ -151,12 +246,8 @@ def main():
         import cornell_box
         scene = cornell_box.build_cornell_box(size=a.size or 256)
 
-    try:
-        scene.render.engine = engine
-    except TypeError:
-        raise SystemExit(f"render_timed: engine {engine} is not available (add-on not enabled?)")
-    if scene.render.engine != engine:
-        raise SystemExit(f"render_timed: could not select engine {engine}")
+    for config in configs:
+        select_engine(scene, config["engine"])
 
     # Same conditions for every engine (the .blend from cornell_box.py already has them; enforce anyway).
     try:
@@ -182,66 +273,65 @@ def main():
     isettings.color_mode = "RGBA"
     isettings.color_depth = "32"
     isettings.exr_codec = "ZIP"
+    width = r.resolution_x * r.resolution_percentage // 100
+    height = r.resolution_y * r.resolution_percentage // 100
+    baseline = candela_settings(scene)
 
-    result = {
-        "engine": engine,
-        "blend": a.blend,
-        "width": r.resolution_x * r.resolution_percentage // 100,
-        "height": r.resolution_y * r.resolution_percentage // 100,
-        "threads": r.threads,                 # what Blender resolves (FIXED: the value set; AUTO: all cores)
-        "threads_mode": r.threads_mode,
-        "blender": bpy.app.version_string,
-        "samples": counts,
-        "runs": [],
-    }
-    if engine == "CYCLES":
-        c = scene.cycles
-        result["settings"] = {k: getattr(c, k) for k in (
-            "device", "use_denoising", "use_adaptive_sampling", "sample_clamp_direct", "sample_clamp_indirect",
-            "pixel_filter_type", "filter_width", "max_bounces", "diffuse_bounces", "glossy_bounces",
-            "transmission_bounces", "seed")}
-    elif engine == "CANDELA":
-        props = getattr(scene, "candela", None)
-        for item in a.candela_set:
-            key, _, value = item.partition("=")
-            current = getattr(props, key)  # AttributeError names an unknown setting
-            setattr(props, key, type(current)(value) if not isinstance(current, bool) else value in ("1", "True"))
-        settings = {}
-        if props is not None:
-            for prop in props.bl_rna.properties:
-                if prop.identifier == "rna_type" or prop.type in ("POINTER", "COLLECTION"):
-                    continue
-                val = getattr(props, prop.identifier, None)
-                if isinstance(val, (int, float, str, bool)):
-                    settings[prop.identifier] = val
-        result["settings"] = settings
-
+    results = {}
+    for config in configs:
+        apply_config(scene, config, baseline)
+        results[config["name"]] = {
+            "engine": config["engine"],
+            "blend": a.blend,
+            "width": width,
+            "height": height,
+            "threads": r.threads,             # what Blender resolves (FIXED: the value set; AUTO: all cores)
+            "threads_mode": r.threads_mode,
+            "blender": bpy.app.version_string,
+            "samples": counts,
+            "settings": engine_settings(scene, config["engine"]),
+            "runs": [],
+        }
     if a.dump:
-        result["dump"] = write_dump(os.path.abspath(a.dump))
+        dump_config = next((c for c in configs if c["engine"] == "CANDELA"), configs[0])
+        apply_config(scene, dump_config, baseline)
+        results[dump_config["name"]]["dump"] = write_dump(os.path.abspath(a.dump))
 
+    # One untimed 1-sample render per configuration first: one-time costs of a process's first render with an
+    # engine (module import, kernel load, thread pools) would otherwise land in round 0's S1 time only.
+    for config in configs:
+        apply_config(scene, config, baseline)
+        warmup = os.path.join(os.path.abspath(a.out), f"warmup_{config['name'].lower()}.exr")
+        render_once(scene, config["engine"], 1, warmup)
+        os.remove(warmup)
+
+    rounds = []
     for rep in range(max(1, a.repeats)):
-        for s in counts:
-            path = os.path.join(os.path.abspath(a.out), f"{engine.lower()}{a.tag}_{s}.exr")
-            entry = render_once(scene, engine, s, path)
-            entry["repeat"] = rep
-            entry["exr"] = path
-            result["runs"].append(entry)
-            print(f"render_timed: {engine} {s} spp: {entry['seconds']:.3f} s", flush=True)
+        # Alternate the order round by round (A B C, C B A, ...) so no configuration always runs first.
+        order = configs if rep % 2 == 0 else configs[::-1]
+        this_round = {"round": rep, "order": [c["name"] for c in order], "samples_per_second": {}}
+        for config in order:
+            name = config["name"]
+            apply_config(scene, config, baseline)
+            secs = {}
+            for s in counts:
+                path = os.path.join(os.path.abspath(a.out), f"{name.lower()}_{s}.exr")
+                entry = render_once(scene, config["engine"], s, path)
+                entry["repeat"] = rep
+                entry["exr"] = path
+                results[name]["runs"].append(entry)
+                secs[s] = entry["seconds"]
+                print(f"render_timed: round {rep} {name} {s} spp: {entry['seconds']:.3f} s", flush=True)
+            if len(counts) >= 2 and secs[counts[-1]] > secs[counts[0]]:
+                this_round["samples_per_second"][name] = (
+                    width * height * (counts[-1] - counts[0]) / (secs[counts[-1]] - secs[counts[0]]))
+        rounds.append(this_round)
 
-    best = {}
-    for e in result["runs"]:
-        s = e["samples"]
-        if s not in best or e["seconds"] < best[s]["seconds"]:
-            best[s] = e
-    result["best_seconds"] = {str(s): best[s]["seconds"] for s in counts}
-    result["best_cpu_seconds"] = {str(s): min(e["cpu_seconds"] for e in result["runs"] if e["samples"] == s)
-                                  for s in counts}
-    result["images"] = {str(s): image_mean_rgb(best[s]["exr"]) for s in counts}
-    rays = {str(s): best[s]["rays"] for s in counts if "rays" in best[s]}
-    if rays:
-        result["rays"] = rays
+    for name in names:
+        summarise(results[name], counts)
 
-    line = json.dumps(result)
+    out = {"configs": results, "rounds": rounds, "samples": counts, "width": width, "height": height}
+    line = json.dumps(out)
     if a.json:
         with open(a.json, "w") as f:
             f.write(line + "\n")
