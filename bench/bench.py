@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """`make bench`: Candela vs Cycles on the example Cornell box, plus the raw Embree ray rate.
 
-    /usr/bin/python3.11 bench/bench.py --build build [--size 256 --samples 64 --threads N --rounds 3]
+    /usr/bin/python3.11 bench/bench.py --build build [--size 256 --samples 64 --threads N --rounds 5]
 
 Same scene, resolution, bounces (12), sample counts, CPU thread count, pixel filter; no denoising, adaptive
 sampling or clamping.  Three configurations render at S and FACTOR*S samples: Cycles, Candela at its defaults
 (light tree) and Candela with Cycles 3.4's light selection (a distribution ∝ power; Cycles' light tree arrived in
-3.5) and Russian roulette (survival √(max throughput) on arrival at a vertex: rr_mode=SQRT_THROUGHPUT).  They run
+3.5) and Russian roulette (survival √(max throughput) on arrival at a vertex, from the second vertex on as Cycles
+does with min_light_bounces = 0: rr_mode=SQRT_THROUGHPUT, rr_start_bounce=2).  They run
 *paired*: one Blender process (bench/render_timed.py) renders all three, round after round in alternating order,
 each render timed with time.perf_counter(), and each round gives every configuration
 
@@ -46,6 +47,9 @@ EXPORT_TARGET_S = 0.5       # 1 M triangles from Blender to the native Session
 # 1,000 instances "cost one mesh's memory": the mesh is stored once (same unique triangles) and the scene takes
 # at most 10 % more memory than with one instance (each instance adds a transform and an Embree instance).
 INSTANCE_MEMORY_TOL = 0.10
+# Cycles' min_light_bounces in the bench scene (examples/cornell_box.py, Blender's default): Cycles' roulette runs at
+# vertices whose bounce count exceeds it, i.e. Candela's rr_start_bounce = min_light_bounces + 2.
+CYCLES_MIN_LIGHT_BOUNCES = 0
 
 
 def parse_args():
@@ -56,13 +60,13 @@ def parse_args():
     ap.add_argument("--samples", type=int, default=64, help="S, the lower sample count (default 64)")
     ap.add_argument("--factor", type=int, default=5, help="S2 = factor * S (default 5)")
     ap.add_argument("--threads", type=int, default=0, help="threads for both engines (default: all cores)")
-    ap.add_argument("--rounds", type=int, default=3,
-                    help="paired rounds: every engine renders S1 and S2 once per round (default 3)")
+    ap.add_argument("--rounds", type=int, default=5,
+                    help="paired rounds: every engine renders S1 and S2 once per round (default 5)")
     ap.add_argument("--rays", type=int, default=0, help="rays for candela_bench_rays (default: its own)")
     ap.add_argument("--blender", default=None, help="Blender launcher (default: bin/candela-blender)")
     ap.add_argument("--no-equal", action="store_true",
                     help="skip the Candela run at Cycles 3.4's light selection and roulette "
-                         "(light_selection=POWER, rr_mode=SQRT_THROUGHPUT)")
+                         "(light_selection=POWER, rr_mode=SQRT_THROUGHPUT, rr_start_bounce=2)")
     ap.add_argument("--engines", default="CYCLES,CANDELA", help="engines to run (default CYCLES,CANDELA)")
     ap.add_argument("--export-triangles", type=int, default=1_000_000, help="triangles of the export-speed mesh")
     ap.add_argument("--instances", type=int, default=1000, help="instances for the instancing-memory check")
@@ -310,11 +314,14 @@ def main():
     #
     # Cycles 3.4 has no light tree: it picks lights from a distribution ∝ power (its light tree arrived in 3.5).
     # Candela's default is the tree, which costs importance evaluations at every vertex and pays off with many
-    # lights; at equal settings Candela selects ∝ power too. Cycles' roulette decides on arrival at a vertex from
-    # the 3rd on, before its shadow rays, with survival √(max throughput); Candela's default (THROUGHPUT) decides
-    # the continuation ray with survival max throughput, which traces ~8 % fewer rays per sample on this scene.
-    # Samples per second are only comparable when both engines trace the same expected number of rays per
-    # sample, so the equal run uses Cycles' rule (rr_mode=SQRT_THROUGHPUT).
+    # lights; at equal settings Candela selects ∝ power too. Cycles' roulette (path_state_continuation_probability,
+    # called on arrival at a vertex, before its shadow rays) continues with probability √(max throughput) at every
+    # vertex whose bounce count exceeds min_light_bounces; cornell_box.py keeps Blender's default 0, so from the
+    # second vertex on — Candela's rr_start_bounce = min_light_bounces + 2 = 2 (bench_quick checks the pairing).
+    # Candela's default (THROUGHPUT from bounce 3) traces ~6 % more rays per sample on this scene than that, and
+    # its earlier "equal" run (SQRT_THROUGHPUT from bounce 3) did too. Samples per second are only comparable
+    # when both engines trace the same expected number of rays per sample, so the equal run uses Cycles' rule
+    # exactly.
     dump_dir = os.path.join(outdir, "cornell_dump")
     configs = []
     if "CYCLES" in engines:
@@ -322,7 +329,8 @@ def main():
     if "CANDELA" in engines:
         configs.append("CANDELA=CANDELA")
         if not a.no_equal:
-            configs.append("CANDELA_POWER=CANDELA:light_selection=POWER,rr_mode=SQRT_THROUGHPUT")
+            configs.append("CANDELA_POWER=CANDELA:light_selection=POWER,rr_mode=SQRT_THROUGHPUT,"
+                           f"rr_start_bounce={CYCLES_MIN_LIGHT_BOUNCES + 2}")
     names = [c.split("=", 1)[0] for c in configs]
     print(f"[2] {', '.join(names)}: {s1} and {s2} spp, {a.rounds} paired round(s), alternating order")
     args = ["--blend", blend, "--samples", f"{s1},{s2}", "--out", os.path.join(outdir, "exr"),

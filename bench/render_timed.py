@@ -208,7 +208,7 @@ def engine_settings(scene, engine):
         return {k: getattr(c, k) for k in (
             "device", "use_denoising", "use_adaptive_sampling", "sample_clamp_direct", "sample_clamp_indirect",
             "pixel_filter_type", "filter_width", "max_bounces", "diffuse_bounces", "glossy_bounces",
-            "transmission_bounces", "seed")}
+            "transmission_bounces", "min_light_bounces", "seed")}
     if engine == "CANDELA":
         return candela_settings(scene)
     return {}

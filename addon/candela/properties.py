@@ -69,7 +69,7 @@ RR_MODES = [
     ("ALBEDO", "Albedo", "Survival probability from the surface's reflectance", 2),
     ("SQRT_THROUGHPUT", "Square Root Throughput",
      "Cycles' rule: on arrival at a vertex, continue with probability √(max throughput); "
-     "paths live longer than with Throughput", 3),
+     "paths live longer than with Throughput. Cycles' Min Light Bounces m matches Russian Roulette From m + 2", 3),
 ]
 
 

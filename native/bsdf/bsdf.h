@@ -97,7 +97,7 @@ public:
         for (int i = 0; i < m_count; ++i) {
             const WeightedLobe& wl = m_lobes[size_t(i)];
             const float a = std::visit([&](const auto& l) { return l.albedo(wo); }, wl.lobe);
-            const float w = luminance(wl.weight) * std::fmax(a, 0.f);
+            const float w = luminance(wl.weight) * max_num(a, 0.f);
             p[size_t(i)] = std::isfinite(w) ? w : 0.f;
             total += p[size_t(i)];
         }
@@ -150,7 +150,7 @@ private:
         }
         if (chosen < 0) return {};
         const float p_chosen = p[size_t(chosen)];
-        const float uc_lobe = std::fmin(std::fmax((uc - cdf) / p_chosen, 0.f), k_one_minus_epsilon);
+        const float uc_lobe = min_num(max_num((uc - cdf) / p_chosen, 0.f), k_one_minus_epsilon);
         const WeightedLobe& wl = m_lobes[size_t(chosen)];
         BsdfSample s = std::visit([&](const auto& l) { return l.sample(wo, u, uc_lobe, mode); }, wl.lobe);
         if (!s.valid()) return {};

@@ -50,7 +50,7 @@ struct OrenNayarBsdf {
         const float sigma = clamp(roughness, 0.f, 1.f);
         const float a = 1.f / (k_pi + ((3.f * k_pi - 4.f) / 6.f) * sigma), b = sigma * a;
         float s = dot(wi, wo) - wi.z * wo.z;
-        if (s > 0.f) s /= std::fmax(wi.z, wo.z);
+        if (s > 0.f) s /= max_num(wi.z, wo.z);
         return Color(a + b * s);
     }
     float pdf(const Vec3& wo, const Vec3& wi, TransportMode = TransportMode::Radiance) const {
@@ -324,7 +324,7 @@ struct PrincipledSheenBsdf {
     BsdfSample sample(const Vec3& wo, Vec2 u, float = 0.f, TransportMode mode = TransportMode::Radiance) const {
         return detail::sample_cosine_reflection(*this, wo, u, mode, flags());
     }
-    float albedo(const Vec3& wo) const { return std::fmax(schlick_weight(wo.z) * wo.z, 0.01f); }
+    float albedo(const Vec3& wo) const { return max_num(schlick_weight(wo.z) * wo.z, 0.01f); }
     uint32_t flags() const { return k_bsdf_reflection | k_bsdf_diffuse; }
 };
 

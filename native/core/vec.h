@@ -6,6 +6,13 @@
 
 namespace candela {
 
+/// std::fmax / std::fmin: a NaN argument yields the other one. GCC emits a call to libm's fmaxf/fminf for those
+/// unless math is assumed finite (x86's maxss/minss return the second operand for a NaN); these compile to a
+/// compare and two selects with the same results (a zero of either sign may come back for ±0 pairs, which
+/// std::fmax allows too).
+inline float max_num(float a, float b) { return a > b ? a : (b == b ? b : a); }
+inline float min_num(float a, float b) { return a < b ? a : (b == b ? b : a); }
+
 struct Vec2 {
     float x = 0.f, y = 0.f;
 };
@@ -43,13 +50,13 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 inline float length_squared(const Vec3& a) { return dot(a, a); }
 inline float length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(const Vec3& a) { return a / length(a); }
-inline float max_component(const Vec3& a) { return std::fmax(a.x, std::fmax(a.y, a.z)); }
-inline float min_component(const Vec3& a) { return std::fmin(a.x, std::fmin(a.y, a.z)); }
+inline float max_component(const Vec3& a) { return max_num(a.x, max_num(a.y, a.z)); }
+inline float min_component(const Vec3& a) { return min_num(a.x, min_num(a.y, a.z)); }
 inline Vec3 vmin(const Vec3& a, const Vec3& b) {
-    return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
+    return {min_num(a.x, b.x), min_num(a.y, b.y), min_num(a.z, b.z)};
 }
 inline Vec3 vmax(const Vec3& a, const Vec3& b) {
-    return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
+    return {max_num(a.x, b.x), max_num(a.y, b.y), max_num(a.z, b.z)};
 }
 inline Vec3 vabs(const Vec3& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
 inline bool is_finite(const Vec3& a) {

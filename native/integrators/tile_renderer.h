@@ -45,6 +45,17 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
     double seconds_per_sample = 0.0;  // per sample per pixel, from the last pass
     StopReason stop = StopReason::Running;
     int done = 0, pass_size = 1;
+    // Passes double from 1 sample up to a cap. Each pass ends at a barrier (the last tile's thread finishes
+    // alone) and with a noise estimate over the film, so small images, whose passes are short, take bigger
+    // ones: up to 64 samples while a pass stays under ~4 M samples (256² pixels), 16 for larger images (the
+    // display refreshes per finished tile, and a 16-sample pass of a large image is already seconds long) and
+    // with a noise threshold (checked between passes). The cap depends on the image only, never on timing, so
+    // the film's sums — and the image — stay the same for every thread count.
+    constexpr double k_pass_samples = double(1 << 22);
+    const int max_pass_size =
+        ps.noise_threshold > 0.0
+            ? 16
+            : std::clamp(int(k_pass_samples / std::max(1.0, double(film.width()) * film.height())), 16, 64);
     while (done < ps.samples && !ctx.cancel.cancelled()) {
         int size = pass_size;
         if (ps.time_limit > 0.0 && done > 0) {
@@ -130,7 +141,7 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
             stop = StopReason::TimeLimit;
             break;
         }
-        pass_size = std::min(pass_size * 2, 16);
+        pass_size = std::min(pass_size * 2, max_pass_size);
         if (done == 1) pass_size = 1;
     }
     if (ctx.cancel.cancelled()) stop = StopReason::Cancelled;

@@ -48,14 +48,16 @@ inline LightSample sample_from_area_point(const Vec3& ref, const Vec3& p, const 
     const Vec3 w = p - ref;
     const float d2 = length_squared(w);
     if (!(d2 > 0.f)) return s;
-    const float d = std::sqrt(d2);
-    const float inv_d = 1.f / d;
     const float dn = dot(w, n);
-    const float cos_l = (two_sided ? std::fabs(dn) : -dn) * inv_d;
-    // The back of a one-sided emitter, or grazing: area_to_solid_angle's threshold. p_ω = d²/(A·cos θ_l) in one
-    // division (the two divisions here are independent, so their latencies overlap).
-    if (!(cos_l > 1e-7f)) return s;
-    const float pdf = d2 / (area * cos_l);
+    const float abs_dn = two_sided ? std::fabs(dn) : -dn;  // d·cos θ_l
+    // p_ω = d²/(A·cos θ_l) = d³/(A·|w·n|): written so, its division needs only w·n and overlaps the square root
+    // (the latency chain is then sqrt → multiply, not sqrt → divide → divide). The back of a one-sided emitter
+    // or a grazing one (cos θ_l ≤ 1e-7, area_to_solid_angle's threshold) gives no sample.
+    const float d = std::sqrt(d2);
+    const float inv_area_dn = 1.f / (area * abs_dn);
+    const float inv_d = 1.f / d;
+    if (!(abs_dn > 1e-7f * d)) return s;
+    const float pdf = d2 * (d * inv_area_dn);  // d·inv_area_dn = 1/(A·cos θ_l): no overflow before the product
     if (!(pdf > 0.f) || !std::isfinite(pdf)) return s;
     s.pdf = pdf;
     s.wi = w * inv_d;

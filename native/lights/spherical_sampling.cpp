@@ -37,24 +37,9 @@ double angle_between(const D3& a, const D3& b) {
     if (dotd(a, b) < 0.0) return k_pi_d - 2.0 * std::asin(clamp_d(lend(a + b) * 0.5, 0.0, 1.0));
     return 2.0 * std::asin(clamp_d(lend(a - b) * 0.5, 0.0, 1.0));
 }
-/// Unit component of v orthogonal to unit w; false if v ∥ w.
-bool orthogonal_unit(const D3& v, const D3& w, D3* out) {
-    *out = v - w * dotd(v, w);
-    return normalize_d(out);
-}
-
-/// atan t for t ∈ [0, 1]. For t > tan(π/8) the identity atan t = π/4 + atan((t − 1)/(t + 1)) moves the argument
-/// into [−tan(π/8), tan(π/8)]; there the alternating Taylor series Σ_{k≤8} (−1)^k z^{2k+1}/(2k+1) errs by less
-/// than its first omitted term |z|¹⁹/19 ≤ tan(π/8)¹⁹/19 = 2.8e-9. Relative to the result that is ≤ 7.2e-9: for
-/// the unreduced branch |z|¹⁸/19 ≤ 7e-9 relative to atan z ≥ z(1 − z²/3); for the reduced one 2.8e-9 against a
-/// result ≥ atan(tan(π/8)) = π/8.
-double atan_unit(double t) {
-    constexpr double k_tan_pi_8 = 0.41421356237309503;  // √2 − 1
-    double base = 0.0;
-    if (t > k_tan_pi_8) {
-        base = k_pi_d / 4.0;
-        t = (t - 1.0) / (t + 1.0);
-    }
+/// atan z for |z| ≤ tan(π/8): the alternating Taylor series Σ_{k≤8} (−1)^k z^{2k+1}/(2k+1) errs by less than its
+/// first omitted term |z|¹⁹/19 ≤ tan(π/8)¹⁹/19 = 2.8e-9, which is ≤ 7e-9 relative to atan z ≥ z(1 − z²/3).
+double atan_series(double t) {
     const double z = t * t;
     const double series =
         1.0 + z * (-1.0 / 3.0 +
@@ -62,16 +47,25 @@ double atan_unit(double t) {
                         z * (-1.0 / 7.0 +
                              z * (1.0 / 9.0 +
                                   z * (-1.0 / 11.0 + z * (1.0 / 13.0 + z * (-1.0 / 15.0 + z * (1.0 / 17.0))))))));
-    return base + t * series;
+    return t * series;
 }
 
-/// atan2(y, x) ∈ [0, π] for y ≥ 0, with atan_unit's relative accuracy (π/2 − atan and π − atan of arguments in
+/// atan(n/d) for 0 ≤ n ≤ d, d > 0, with one division. Above tan(π/8) the identity atan t = π/4 + atan((t − 1)/(t + 1))
+/// moves the argument into [−tan(π/8), 0], and (t − 1)/(t + 1) = (n − d)/(n + d) is formed from n and d directly
+/// (each rounded once, ~1e-16): the series' 2.8e-9 is then ≤ 7.2e-9 relative to a result ≥ π/8.
+double atan_ratio(double n, double d) {
+    constexpr double k_tan_pi_8 = 0.41421356237309503;  // √2 − 1
+    if (n > k_tan_pi_8 * d) return k_pi_d / 4.0 + atan_series((n - d) / (n + d));
+    return atan_series(n / d);
+}
+
+/// atan2(y, x) ∈ [0, π] for y ≥ 0, with atan_ratio's relative accuracy (π/2 − atan and π − atan of arguments in
 /// [0, 1] lose nothing: the subtracted term is at most half the result).
 double atan2_upper(double y, double x) {
     const double ax = std::fabs(x);
     double r;
-    if (y <= ax) r = ax > 0.0 ? atan_unit(y / ax) : 0.0;
-    else r = k_pi_d / 2.0 - atan_unit(ax / y);
+    if (y <= ax) r = ax > 0.0 ? atan_ratio(y, ax) : 0.0;
+    else r = k_pi_d / 2.0 - atan_ratio(ax, y);
     return x < 0.0 ? k_pi_d - r : r;
 }
 
@@ -151,15 +145,18 @@ SphericalSample SphericalTriangle::sample(Vec2 u) const {
     // Unit tangent at a toward c: |c − (c·a)a| = |c × a|.
     const D3 c_perp = (c - a * dotd(c, a)) * (1.0 / l_ca);
     const D3 c_hat = a * q + c_perp * safe_sqrt_d((1.0 - q) * (1.0 + q));
-    // cos θ = 1 − u₁(1 − c′·b): uniform in the cosine along the arc b–c′.
-    const double one_minus_z = double(u.y) * (1.0 - dotd(c_hat, b));
+    // cos θ = z = 1 − u₁(1 − c′·b): uniform in the cosine along the arc b–c′; w = z·b + √(1 − z²)·t̂ with t̂ the
+    // unit tangent at b toward c′, t̂ = (c′ − (c′·b)b)/√(1 − (c′·b)²). With k = c′·b, 1 − z² = u₁(1 − k)(1 + z) and
+    // 1 − k² = (1 − k)(1 + k), so w = z·b + (c′ − k·b)·√(u₁(1 + z)/(1 + k)): one division and one square root, no
+    // cancellation when c′ ≈ b (then w → b), and |w|² = z² + (1 − k)(1 + z)u₁ = z² + (1 − z)(1 + z) = 1 exactly
+    // in real arithmetic, so w needs no renormalisation. 1 + k > 0: c′ = −b would need Ω ≥ 2π.
+    const double k = dotd(c_hat, b);
+    const double one_minus_z = double(u.y) * (1.0 - k);
     const double z = 1.0 - one_minus_z;
-    D3 w = b;
-    D3 cb_perp;
-    if (orthogonal_unit(c_hat, b, &cb_perp)) w = b * z + cb_perp * safe_sqrt_d(one_minus_z * (2.0 - one_minus_z));
-    if (!normalize_d(&w)) return out;
+    const double scale = safe_sqrt_d(double(u.y) * (1.0 + z) / (1.0 + k));
+    const D3 w = b * z + (c_hat - b * k) * scale;
     const float pdf = float(1.0 / omega);
-    if (!(pdf > 0.f) || !std::isfinite(pdf)) return out;
+    if (!(pdf > 0.f) || !std::isfinite(pdf) || !std::isfinite(w.x + w.y + w.z)) return out;
     out.w = f3(w);
     out.pdf = pdf;
     return out;

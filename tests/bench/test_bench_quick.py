@@ -56,6 +56,9 @@ def test_the_equal_run_uses_cycles_light_selection_and_roulette(report):
     rep, _ = report
     eq = rep["engines"]["CANDELA_POWER"]["settings"]
     assert eq["light_selection"] == "POWER" and eq["rr_mode"] == "SQRT_THROUGHPUT"
+    # Cycles' roulette runs at vertices whose bounce count exceeds min_light_bounces (bounce 0 = the first
+    # vertex); Candela's arrival roulette runs at vertex v when v + 1 >= rr_start_bounce.
+    assert eq["rr_start_bounce"] == rep["engines"]["CYCLES"]["settings"]["min_light_bounces"] + 2
     # Settings of one configuration must not leak into the next (the defaults run keeps the scene's own).
     default = rep["engines"]["CANDELA"]["settings"]
     assert (default["light_selection"], default["rr_mode"]) != ("POWER", "SQRT_THROUGHPUT")

@@ -18,7 +18,7 @@ namespace {
 constexpr float k_inf = std::numeric_limits<float>::infinity();
 
 /// MIS weight of strategy a against b (pdfs already scaled by their sample counts); a delta a weighs 1.
-float mis_weight(MisHeuristic h, float a, float b) {
+inline __attribute__((always_inline)) float mis_weight(MisHeuristic h, float a, float b) {
     if (std::isinf(a)) return 1.f;
     if (h == MisHeuristic::Power) {
         a *= a;
@@ -148,7 +148,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
         // made on first use, then shared by every shadow ray and the continuation leaving that side.
         Vec3 spawn[2];
         bool spawned[2] = {false, false};
-        auto spawn_origin = [&](bool front) -> const Vec3& {
+        auto spawn_origin = [&](bool front) __attribute__((always_inline)) -> const Vec3& {
             const int side = front ? 0 : 1;
             if (!spawned[side]) {
                 spawn[side] = offset_ray_origin(hit.p, front ? ng : -ng);
@@ -184,7 +184,7 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
         // paths alive longer than THROUGHPUT does (Cycles: "roughly match typical view transform").
         const bool arrival_roulette = roulette_here && cfg.rr_mode == RouletteMode::SqrtThroughput;
         if (arrival_roulette) {
-            const float survive = std::fmin(1.f, std::sqrt(max_component(st.beta) * st.eta_scale));
+            const float survive = min_num(1.f, std::sqrt(max_component(st.beta) * st.eta_scale));
             if (!(survive > 0.f) || u_rr >= survive) return;
             st.beta /= survive;
         }
@@ -284,8 +284,8 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
             next->dim_offset = st.dim_offset + j * (cfg.max_bounces + 2);
             if (roulette_here && !arrival_roulette) {
                 const float survive = cfg.rr_mode == RouletteMode::Albedo
-                                          ? std::fmin(1.f, max_component(bsdf.albedo(wo_local)))
-                                          : std::fmin(1.f, max_component(next->beta) * float(branches) * next->eta_scale);
+                                          ? min_num(1.f, max_component(bsdf.albedo(wo_local)))
+                                          : min_num(1.f, max_component(next->beta) * float(branches) * next->eta_scale);
                 if (!(survive > 0.f) || light_select_u(u_rr, uint32_t(j), uint32_t(branches)) >= survive) return false;
                 next->beta /= survive;
             }

@@ -11,7 +11,9 @@
 // stratified continuations (Cook's stochastic ray tracing), each carrying 1/b of the throughput. Paths end
 // at max_bounces, or by Russian roulette from rr_start_bounce on (Arvo & Kirk 1990) with survival
 // min(1, max throughput·Πη²) or the surface's albedo for the continuation ray, or Cycles' rule (survival
-// min(1, √(max throughput·Πη²)), decided on arrival at a vertex before its shadow rays), each of which keeps
+// min(1, √(max throughput·Πη²)), decided on arrival at vertex v — v = 0 the first — when v + 1 >= rr_start_bounce,
+// before its shadow rays; Cycles decides at vertices whose bounce count exceeds min_light_bounces = m, so
+// rr_start_bounce = m + 2 reproduces it), each of which keeps
 // the estimator unbiased for the truncated sum. clamp_indirect (off by default) clamps indirect contributions: biased, fewer fireflies.
 #pragma once
 
