@@ -18,6 +18,8 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -30,6 +32,16 @@
 namespace candela {
 
 inline constexpr int k_min_noise_samples = 16;
+
+/// Whether Tracer can continue a path from a camera ray's traced hit: Li(ray, TracedHit, sampler, stats, alpha,
+/// aov). Such tracers get their camera rays traced in packets (Scene::intersect_packet).
+template <class Tracer, class = void>
+struct traces_from_hit : std::false_type {};
+template <class Tracer>
+struct traces_from_hit<Tracer, std::void_t<decltype(std::declval<const Tracer&>().Li(
+                                   std::declval<const Ray&>(), std::declval<const TracedHit&>(), std::declval<Sampler&>(),
+                                   std::declval<PathStats&>(), static_cast<float*>(nullptr), static_cast<AovSample*>(nullptr)))>>
+    : std::true_type {};
 
 /// Tracer: `Color Li(const Ray&, Sampler&, PathStats&, float* alpha, AovSample* aov) const` (aov: null, or
 /// where the tracer records the first surface the camera ray sees; integrators/camera_hit.h).
@@ -87,36 +99,69 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                         // with s mod k_noise_replicates = r): each replicate's sampler then sees its samples of
                         // the pixel as one run, which is what its per-pixel caches (Sobol seeds) amortise over.
                         // Only the order of the film's sums changes with this, not which samples are taken.
+                        //
+                        // Camera rays go to Embree in groups of up to eight consecutive samples of one replicate
+                        // (tracers that can continue from a traced hit): rays through one pixel traverse the BVH
+                        // together several times faster than one by one. The group's rays are made first, then
+                        // each path is traced with its sampler positioned again at its own sample (positioning is
+                        // cheap within a pixel; the path draws only per-bounce dimensions after the camera's).
+                        constexpr int group_size = traces_from_hit<Tracer>::value ? Scene::k_packet_size : 1;
                         for (int first = begin; first < std::min(end, begin + int(k_noise_replicates)); ++first)
-                        for (int s = first; s < end; s += int(k_noise_replicates)) {
-                            const uint32_t replicate = noise_replicate_of(uint32_t(s));
+                        for (int s0 = first; s0 < end; s0 += group_size * int(k_noise_replicates)) {
+                            const uint32_t replicate = noise_replicate_of(uint32_t(s0));
                             Sampler& sampler = replicates[replicate];
-                            // Positioning and the filter draw in one visit, so the draw inlines.
-                            const Vec2 u_pixel = std::visit(
-                                [&](auto& concrete) {
-                                    concrete.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
-                                    return concrete.sample_2d(dimension_index(Dim::Filter));
-                                },
-                                sampler);
-                            const Vec2 offset = ps.filter.sample(u_pixel);
-                            const Vec2 u_lens = camera.has_aperture() ? get_2d(sampler, Dim::Lens) : Vec2{0.5f, 0.5f};
-                            const Ray ray = camera.generate_ray({fx + 0.5f + offset.x, fy + 0.5f + offset.y}, u_lens);
-                            float alpha = 1.f;
-                            AovSample aov;
-                            Color L = tracer.Li(ray, sampler, stats, &alpha, aovs ? &aov : nullptr);
-                            ++stats.paths;
-                            // Non-finite or negative radiance never reaches the film: drop and count it.
-                            // Debug builds stop right where it arises instead, naming the sample.
-                            if (!is_finite(L) || min_component(L) < 0.f) {
-#ifndef NDEBUG
-                                throw InternalError("non-finite or negative radiance at pixel (" + std::to_string(fx) +
-                                                    ", " + std::to_string(fy) + "), sample " + std::to_string(s));
-#endif
-                                ++stats.nan_samples;
-                                L = Color(0.f);
+                            Ray rays[group_size];
+                            int samples[group_size];
+                            int n = 0;
+                            for (int s = s0; s < end && n < group_size; s += int(k_noise_replicates), ++n) {
+                                // Positioning and the filter draw in one visit, so the draw inlines.
+                                const Vec2 u_pixel = std::visit(
+                                    [&](auto& concrete) {
+                                        concrete.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
+                                        return concrete.sample_2d(dimension_index(Dim::Filter));
+                                    },
+                                    sampler);
+                                const Vec2 offset = ps.filter.sample(u_pixel);
+                                const Vec2 u_lens = camera.has_aperture() ? get_2d(sampler, Dim::Lens) : Vec2{0.5f, 0.5f};
+                                rays[n] = camera.generate_ray({fx + 0.5f + offset.x, fy + 0.5f + offset.y}, u_lens);
+                                samples[n] = s;
                             }
-                            acc.add(L, alpha, replicate);
-                            if (aovs) aov_accum[size_t(y - tile.y0) * tile.width() + (x - tile.x0)].add(aov, s == 0);
+                            TracedHit hits[group_size];
+                            if constexpr (group_size > 1) {
+                                if (n > 1) scene.intersect_packet(rays, n, hits);
+                            }
+                            for (int j = 0; j < n; ++j) {
+                                const int s = samples[j];
+                                // Position the sampler at this sample again, even the group's last (the one it
+                                // was left at): tracing the earlier paths moved its per-sample state (the Sobol
+                                // batch drawn ahead).
+                                if (n > 1)
+                                    std::visit([&](auto& concrete) {
+                                        concrete.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
+                                    }, sampler);
+                                float alpha = 1.f;
+                                AovSample aov;
+                                Color L;
+                                if constexpr (group_size > 1) {
+                                    L = n > 1 ? tracer.Li(rays[j], hits[j], sampler, stats, &alpha, aovs ? &aov : nullptr)
+                                              : tracer.Li(rays[j], sampler, stats, &alpha, aovs ? &aov : nullptr);
+                                } else {
+                                    L = tracer.Li(rays[j], sampler, stats, &alpha, aovs ? &aov : nullptr);
+                                }
+                                ++stats.paths;
+                                // Non-finite or negative radiance never reaches the film: drop and count it.
+                                // Debug builds stop right where it arises instead, naming the sample.
+                                if (!is_finite(L) || min_component(L) < 0.f) {
+#ifndef NDEBUG
+                                    throw InternalError("non-finite or negative radiance at pixel (" + std::to_string(fx) +
+                                                        ", " + std::to_string(fy) + "), sample " + std::to_string(s));
+#endif
+                                    ++stats.nan_samples;
+                                    L = Color(0.f);
+                                }
+                                acc.add(L, alpha, replicate);
+                                if (aovs) aov_accum[size_t(y - tile.y0) * tile.width() + (x - tile.x0)].add(aov, s == 0);
+                            }
                         }
                     }
                 }

@@ -471,30 +471,75 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     rtcIntersect1(m_top.get(), &context.context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
-    const bool via_instance = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
-    const uint32_t object = via_instance ? rh.hit.instID[0] : rh.hit.geomID;
-    const Placement& pl = m_placements[object];
-    const MeshShading& s = m_shading[pl.mesh];
-    const uint32_t prim = rh.hit.primID;
-
-    hit->primitive = {rh.hit.geomID, prim, rh.hit.instID[0]};
     // A filter widened tfar past the hit it kept (to compare coplanar rivals): that hit's own distance is best_t.
     // A later hit on an unfiltered object within the widened range is at tfar.
-    hit->t = context.have_best && hit->primitive == context.best ? context.best_t : rh.ray.tfar;
-    hit->p = ray.o + ray.d * hit->t;
-    Vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    const PrimitiveRef found{rh.hit.geomID, rh.hit.primID, rh.hit.instID[0]};
+    const float t = context.have_best && found == context.best ? context.best_t : rh.ray.tfar;
+    decode_hit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.u, rh.hit.v,
+               Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), t, hit);
+    return true;
+}
+
+void Scene::decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t inst, float u, float v,
+                       const Vec3& ng_embree, float t, SurfaceHit* hit) const {
+    const bool via_instance = inst != RTC_INVALID_GEOMETRY_ID;
+    const uint32_t object = via_instance ? inst : geom;
+    const Placement& pl = m_placements[object];
+    const MeshShading& s = m_shading[pl.mesh];
+    hit->primitive = {geom, prim, inst};
+    hit->t = t;
+    hit->p = ray.o + ray.d * t;
+    Vec3 ng = ng_embree;
     if (pl.instanced) ng = pl.normal_to_world.vector(ng);
     if (pl.mirrored) ng = -ng;
     const float len = length(ng);
     hit->ng = len > 0.f ? ng / len : Vec3(0.f, 0.f, 1.f);
-    hit->ns = shading_normal(s, pl, prim, rh.hit.u, rh.hit.v, hit->ng);
+    hit->ns = shading_normal(s, pl, prim, u, v, hit->ng);
     hit->material = s.material[prim];
     hit->object = object;
-    hit->b1 = rh.hit.u;
-    hit->b2 = rh.hit.v;
+    hit->b1 = u;
+    hit->b2 = v;
     const int32_t rank = s.emissive_rank[prim];
     hit->light = (rank >= 0 && pl.light_base >= 0) ? pl.light_base + rank : -1;
-    return true;
+}
+
+void Scene::intersect_packet(const Ray* rays, int n, TracedHit* hits) const {
+    if (n < 1 || n > k_packet_size) throw InternalError("intersect_packet: 1 to 8 rays");
+    // Filters (objects hidden from this ray type, coplanar tie-breaks) are written for single rays.
+    if (n == 1 || (m_hidden_from & rays[0].type) != 0 || m_any_coplanar) {
+        for (int j = 0; j < n; ++j) hits[j].found = intersect(rays[j], &hits[j].hit);
+        return;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) int valid[k_packet_size];
+    alignas(32) RTCRayHit8 rh;
+    for (int j = 0; j < k_packet_size; ++j) {
+        const Ray& ray = rays[j < n ? j : 0];
+        valid[j] = j < n ? -1 : 0;
+        rh.ray.org_x[j] = ray.o.x;
+        rh.ray.org_y[j] = ray.o.y;
+        rh.ray.org_z[j] = ray.o.z;
+        rh.ray.dir_x[j] = ray.d.x;
+        rh.ray.dir_y[j] = ray.d.y;
+        rh.ray.dir_z[j] = ray.d.z;
+        rh.ray.tnear[j] = ray.tmin;
+        rh.ray.tfar[j] = ray.tmax;
+        rh.ray.time[j] = 0.f;
+        rh.ray.mask[j] = 0xFFFFFFFFu;
+        rh.ray.id[j] = k_query_tag;
+        rh.ray.flags[j] = 0;
+        rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][j] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, m_top.get(), &context, &rh);
+    for (int j = 0; j < n; ++j) {
+        hits[j].found = rh.hit.geomID[j] != RTC_INVALID_GEOMETRY_ID;
+        if (hits[j].found)
+            decode_hit(rays[j], rh.hit.geomID[j], rh.hit.primID[j], rh.hit.instID[0][j], rh.hit.u[j], rh.hit.v[j],
+                       Vec3(rh.hit.Ng_x[j], rh.hit.Ng_y[j], rh.hit.Ng_z[j]), rh.ray.tfar[j], &hits[j].hit);
+    }
 }
 
 bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from,

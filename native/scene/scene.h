@@ -50,6 +50,11 @@ public:
     /// found at build: coplanar_overlap.h) are not told apart by distance: an emitting one wins, then the later
     /// object, so the choice is the same for every ray. Objects invisible to the ray's type (ray.type) are not hit.
     bool intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip = {}) const;
+    /// Closest hits of n ≤ k_packet_size rays of one type that leave no surface (camera rays of one pixel):
+    /// one Embree packet query where no filter runs on them, else intersect() per ray. Coherent rays traverse
+    /// the BVH together, several times faster than one by one; the hits are intersect()'s (tested).
+    static constexpr int k_packet_size = 8;
+    void intersect_packet(const Ray* rays, int n, TracedHit* hits) const;
     /// True if any surface lies along o + t·d for t in (0, tmax), ignoring the objects invisible to shadow rays
     /// (and the triangles at both ends where a filter runs, as in intersect()). d need not be a unit vector (t is
     /// then in units of |d|: a segment o → o + d is d with tmax ≤ 1).
@@ -92,6 +97,10 @@ private:
     struct Placement;
     struct QueryContext;
     void build(const SceneArrays& arrays, const CancelToken* cancel);
+    /// The SurfaceHit of Embree's hit (geometry, triangle, instance ids, barycentrics, unnormalised Ng) at
+    /// distance t along `ray`.
+    void decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t inst, float u, float v, const Vec3& ng_embree,
+                    float t, SurfaceHit* hit) const;
     /// Embree filter: drops the skipped triangles and hits on objects hidden from the ray's type and, for
     /// closest-hit queries, breaks ties between coplanar surfaces by a fixed priority instead of float rounding (no
     /// z-fighting speckle). The context filter of ray types some object is hidden from (it sees every hit).

@@ -28,4 +28,11 @@ struct SurfaceHit {
     float b1 = 0.f, b2 = 0.f;  // barycentric weights of the triangle's second and third corners
 };
 
+/// The closest hit of a ray traced ahead of its path (camera rays go to Embree eight at a time), handed to the
+/// integrator that continues from it.
+struct TracedHit {
+    SurfaceHit hit;
+    bool found = false;  // false: the ray escaped (hit is unset)
+};
+
 }  // namespace candela

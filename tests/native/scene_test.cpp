@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/rng.h"
 #include "scene/scene.h"
 #include "test_helpers.h"
 
@@ -111,6 +112,60 @@ TEST(SceneArrays, WrongShapeIsRejected) {
     const float p[6] = {0, 0, 0, 1, 1, 1};
     EXPECT_THROW(a.set("positions", ElemType::F32, {3, 2}, p), InvalidScene);
     EXPECT_THROW(a.set("no_such_array", ElemType::F32, {6}, p), InvalidScene);
+}
+
+}  // namespace
+}  // namespace candela::test
+
+namespace candela::test {
+namespace {
+
+// Camera rays traced eight at a time (Scene::intersect_packet, Embree's packet traversal) find the hits one by
+// one tracing finds: the same triangle, and distance and barycentrics equal up to the packet kernel's own
+// rounding. Groups of every size 1–8, rays that miss, flattened meshes and shared (instanced) ones.
+TEST(Scene, PacketHitsMatchSingleRayHits) {
+    MeshBuilder b;
+    const uint32_t m = b.add_material(Color(0.5f), Color(0.f));
+    b.add_instance(b.add_quad_z(-1, 1, -1, 1, -3, m));                   // flattened
+    const uint32_t box = b.add_box(Vec3(0.2f, 0.2f, 0.2f), m);
+    for (int i = 0; i < 3; ++i) {                                         // shared: instanced
+        const float xf[16] = {1, 0, 0, -0.5f + 0.5f * i, 0, 1, 0, 0.1f * i, 0, 0, 1, -2.f, 0, 0, 0, 1};
+        b.add_instance(box, xf);
+    }
+    const float sphere_xf[16] = {1, 0, 0, 0.6f, 0, 1, 0, -0.6f, 0, 0, 1, -2.5f, 0, 0, 0, 1};
+    b.add_instance(b.add_sphere(0.3f, 24, 12, m), sphere_xf);            // flattened, smooth-free facets
+    const Scene scene(b.arrays(), basic_params(16, 16, 1, 1), nullptr);
+    Pcg32 rng(5, 9);
+    int compared = 0, misses = 0;
+    for (int py = 0; py < 16; ++py)
+        for (int px = 0; px < 16; ++px) {
+            const int n = 1 + (px + 16 * py) % Scene::k_packet_size;
+            Ray rays[Scene::k_packet_size];
+            for (int j = 0; j < n; ++j)
+                rays[j] = scene.camera().generate_ray({px + rng.next_float(), py + rng.next_float()});
+            TracedHit hits[Scene::k_packet_size];
+            scene.intersect_packet(rays, n, hits);
+            for (int j = 0; j < n; ++j) {
+                SurfaceHit one;
+                const bool found = scene.intersect(rays[j], &one);
+                ASSERT_EQ(hits[j].found, found) << "pixel " << px << ", " << py << " ray " << j;
+                if (!found) {
+                    ++misses;
+                    continue;
+                }
+                const SurfaceHit& h = hits[j].hit;
+                EXPECT_TRUE(h.primitive == one.primitive);
+                EXPECT_EQ(h.object, one.object);
+                EXPECT_EQ(h.material, one.material);
+                EXPECT_NEAR(h.t, one.t, 1e-5f * one.t);
+                EXPECT_NEAR(h.b1, one.b1, 1e-5f);
+                EXPECT_NEAR(h.b2, one.b2, 1e-5f);
+                EXPECT_NEAR(dot(h.ng, one.ng), 1.f, 1e-6f);
+                ++compared;
+            }
+        }
+    EXPECT_GT(compared, 500);
+    EXPECT_GT(misses, 50);
 }
 
 }  // namespace

@@ -66,9 +66,19 @@ Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
     return L;
 }
 
+Color PathTracer::Li(const Ray& camera_ray, const TracedHit& first, Sampler& sampler, PathStats& stats, float* alpha,
+                     AovSample* aov) const {
+    Color L(0.f);
+    *alpha = 1.f;
+    PathState st;
+    st.aov = aov;
+    std::visit([&](auto& concrete) { trace(camera_ray, st, 0, concrete, stats, L, alpha, &first); }, sampler);
+    return L;
+}
+
 template <class ConcreteSampler>
 void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampler, PathStats& stats, Color& L,
-                       float* alpha) const {
+                       float* alpha, const TracedHit* first) const {
     const LightSet& lights = m_scene.lights();
     const PathSettings& cfg = m_settings;
     const int k = cfg.light_samples;
@@ -78,7 +88,14 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
     for (;; ++bounce) {
         SurfaceHit hit;
         ++stats.rays;
-        const bool found = m_scene.intersect(ray, &hit, st.from);
+        bool found;
+        if (first) {  // the camera ray, traced ahead in a packet
+            found = first->found;
+            if (found) hit = first->hit;
+            first = nullptr;
+        } else {
+            found = m_scene.intersect(ray, &hit, st.from);
+        }
         const float t_surface = found ? hit.t : ray.tmax;
 
         // Emission found by this ray: MIS against light sampling (weight 1 after a camera ray or a delta

@@ -34,6 +34,9 @@ public:
     /// Radiance arriving along the camera ray; *alpha is 0 when film_transparent and the ray escapes (and loses
     /// a holdout's weight); `aov`, if given, receives the data passes of the first surface hit.
     Color Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov = nullptr) const;
+    /// The same for a camera ray already traced (Scene::intersect_packet): the path starts from its hit.
+    Color Li(const Ray& camera_ray, const TracedHit& first, Sampler& sampler, PathStats& stats, float* alpha,
+             AovSample* aov = nullptr) const;
 
     /// How the ray being traced was produced: what the vertex it hits needs for MIS, roulette and dims.
     struct PathState {
@@ -50,9 +53,10 @@ public:
 
 private:
     /// Templated on the concrete sampler (Li dispatches once per path), so every draw inlines.
+    /// `first`, if given, is the closest hit of `ray` (traced ahead), used instead of intersecting it again.
     template <class ConcreteSampler>
     void trace(Ray ray, PathState state, int bounce, ConcreteSampler& sampler, PathStats& stats, Color& L,
-               float* alpha) const;
+               float* alpha, const TracedHit* first = nullptr) const;
 
     const Scene& m_scene;
     const PathSettings& m_settings;
