@@ -479,7 +479,7 @@ def main():
         print(f"per CPU-second (all threads; leaves out other guests' steal time): Cycles {fmt_rate(cyc_cpu)}, "
               f"Candela {fmt_rate(can_cpu)}" + (f", Candela at Cycles' light selection and roulette {fmt_rate(eq_cpu)}" if eq_cpu else ""))
         print(f"CPU-time speed ratio Candela/Cycles: defaults {fmt(default_cpu_ratio)}, "
-              f"equal light selection {fmt(equal_cpu_ratio)}")
+              f"equal settings {fmt(equal_cpu_ratio)}")
     if eq_rate:
         print(f"Candela samples/s, light selection ∝ power and roulette as Cycles 3.4   {fmt_rate(eq_rate)}")
     print("(samples/s above: best time of each count over all rounds)")
