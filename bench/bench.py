@@ -181,14 +181,19 @@ def blender_cmd(blender, script, args):
 # Metrics
 # ---------------------------------------------------------------------------------------------------------------
 
-def rate(res, s1, s2):
-    """samples/s from the best times at s1 and s2 (setup cancels); None if not measurable."""
-    if not res:
-        return None
-    t1, t2 = res["best_seconds"].get(str(s1)), res["best_seconds"].get(str(s2))
+def difference_rate(res, s1, s2, t1, t2):
+    """Samples per second W*H*(S2 - S1)/(t2 - t1) from the times of the two counts (setup cancels); None if not
+    measurable."""
     if t1 is None or t2 is None or t2 <= t1:
         return None
     return res["width"] * res["height"] * (s2 - s1) / (t2 - t1)
+
+
+def rate(res, s1, s2):
+    """samples/s from the best times at s1 and s2; None if not measurable."""
+    if not res:
+        return None
+    return difference_rate(res, s1, s2, res["best_seconds"].get(str(s1)), res["best_seconds"].get(str(s2)))
 
 
 def cpu_rate(res, s1, s2):
@@ -198,10 +203,20 @@ def cpu_rate(res, s1, s2):
     per sample."""
     if not res or "best_cpu_seconds" not in res:
         return None
-    c1, c2 = res["best_cpu_seconds"].get(str(s1)), res["best_cpu_seconds"].get(str(s2))
-    if c1 is None or c2 is None or c2 <= c1:
-        return None
-    return res["width"] * res["height"] * (s2 - s1) / (c2 - c1)
+    return difference_rate(res, s1, s2, res["best_cpu_seconds"].get(str(s1)), res["best_cpu_seconds"].get(str(s2)))
+
+
+def round_rates(configs, rounds, s1, s2):
+    """Adds to each round {"samples_per_second": {NAME: rate}}: every configuration's rate from its own S1 and S2
+    renders of that round (render_timed.py tags each run with its round as "repeat")."""
+    for rnd in rounds:
+        rnd["samples_per_second"] = {}
+        for name, res in configs.items():
+            secs = {e["samples"]: e["seconds"] for e in res["runs"] if e["repeat"] == rnd["round"]}
+            r = difference_rate(res, s1, s2, secs.get(s1), secs.get(s2))
+            if r:
+                rnd["samples_per_second"][name] = r
+    return rounds
 
 
 def pt_ray_rate(res, s1, s2):
@@ -350,7 +365,7 @@ def main():
         crashed = True
     else:
         report["engines"] = res["configs"]
-        report["rounds"] = res["rounds"]
+        report["rounds"] = round_rates(res["configs"], res["rounds"], s1, s2)
         for rnd in res["rounds"]:
             sps = rnd["samples_per_second"]
             print(f"    round {rnd['round']} ({' '.join(rnd['order'])}): "

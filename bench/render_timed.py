@@ -15,8 +15,8 @@ sample count, so bench.py takes samples/s = W*H*(S2 - S1) / (t2 - t1) from the b
 With several configurations the run is *paired*: each repeat is a round in which every configuration renders
 every sample count, in alternating order (A B C, then C B A, ...), all in this one process on one scene.
 Configurations measured seconds apart see the same machine load, so the per-round ratio of their samples/s is far
-steadier on a shared machine than a ratio of runs taken minutes apart; `rounds` lists each round's samples/s per
-configuration (from that round's own S1/S2 pair).
+steadier on a shared machine than a ratio of runs taken minutes apart; `rounds` lists each round's order, and each
+run carries its round as `repeat` (bench.py takes each round's samples/s from its own S1/S2 pair).
 
 It also reports the mean linear RGB of every EXR written (read back with bpy.data.images.load), the number of
 rays Candela traced (the add-on keeps the last render's native stats in render_loop.last_render_stats), and, with
@@ -309,23 +309,17 @@ def main():
     for rep in range(max(1, a.repeats)):
         # Alternate the order round by round (A B C, C B A, ...) so no configuration always runs first.
         order = configs if rep % 2 == 0 else configs[::-1]
-        this_round = {"round": rep, "order": [c["name"] for c in order], "samples_per_second": {}}
+        rounds.append({"round": rep, "order": [c["name"] for c in order]})
         for config in order:
             name = config["name"]
             apply_config(scene, config, baseline)
-            secs = {}
             for s in counts:
                 path = os.path.join(os.path.abspath(a.out), f"{name.lower()}_{s}.exr")
                 entry = render_once(scene, config["engine"], s, path)
                 entry["repeat"] = rep
                 entry["exr"] = path
                 results[name]["runs"].append(entry)
-                secs[s] = entry["seconds"]
                 print(f"render_timed: round {rep} {name} {s} spp: {entry['seconds']:.3f} s", flush=True)
-            if len(counts) >= 2 and secs[counts[-1]] > secs[counts[0]]:
-                this_round["samples_per_second"][name] = (
-                    width * height * (counts[-1] - counts[0]) / (secs[counts[-1]] - secs[counts[0]]))
-        rounds.append(this_round)
 
     for name in names:
         summarise(results[name], counts)

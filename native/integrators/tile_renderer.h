@@ -127,9 +127,7 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                                 samples[n] = s;
                             }
                             TracedHit hits[group_size];
-                            if constexpr (group_size > 1) {
-                                if (n > 1) scene.intersect_packet(rays, n, hits);
-                            }
+                            if constexpr (group_size > 1) scene.intersect_packet(rays, n, hits);
                             for (int j = 0; j < n; ++j) {
                                 const int s = samples[j];
                                 // Position the sampler at this sample again, even the group's last (the one it
@@ -142,12 +140,9 @@ void render_progressive(const Scene& scene, Film& film, RenderContext& ctx, cons
                                 float alpha = 1.f;
                                 AovSample aov;
                                 Color L;
-                                if constexpr (group_size > 1) {
-                                    L = n > 1 ? tracer.Li(rays[j], hits[j], sampler, stats, &alpha, aovs ? &aov : nullptr)
-                                              : tracer.Li(rays[j], sampler, stats, &alpha, aovs ? &aov : nullptr);
-                                } else {
-                                    L = tracer.Li(rays[j], sampler, stats, &alpha, aovs ? &aov : nullptr);
-                                }
+                                AovSample* const aov_out = aovs ? &aov : nullptr;
+                                if constexpr (group_size > 1) L = tracer.Li(rays[j], hits[j], sampler, stats, &alpha, aov_out);
+                                else L = tracer.Li(rays[j], sampler, stats, &alpha, aov_out);
                                 ++stats.paths;
                                 // Non-finite or negative radiance never reaches the film: drop and count it.
                                 // Debug builds stop right where it arises instead, naming the sample.

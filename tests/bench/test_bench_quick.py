@@ -24,6 +24,15 @@ def test_paired_ratios_pair_rounds_and_skip_unmeasured_ones():
     assert bench.median([]) is None
 
 
+def test_round_rates_use_each_rounds_own_renders():
+    # 10x10 pixels, 4 -> 20 samples: 1600 samples more; round 0 takes 1 s for them, round 1 takes 2 s.
+    runs = [{"samples": 4, "seconds": 0.5, "repeat": 0}, {"samples": 20, "seconds": 1.5, "repeat": 0},
+            {"samples": 4, "seconds": 0.5, "repeat": 1}, {"samples": 20, "seconds": 2.5, "repeat": 1}]
+    configs = {"A": {"width": 10, "height": 10, "runs": runs}}
+    rounds = bench.round_rates(configs, [{"round": 0}, {"round": 1}], 4, 20)
+    assert [r["samples_per_second"]["A"] for r in rounds] == [1600.0, 800.0]
+
+
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
     build = os.environ.get("CANDELA_BUILD_DIR", os.path.join(ROOT, "build"))
