@@ -9,7 +9,7 @@
 #include "sampling/warp.h"
 #include "scene/coplanar_overlap.h"
 #include "scene/scene.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 namespace candela {
 namespace {

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 namespace candela {
 

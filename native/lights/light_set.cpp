@@ -2,7 +2,7 @@
 
 #include "core/error.h"
 #include "lights/light.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 namespace candela {
 

@@ -1,6 +1,6 @@
 #include "scene/mesh_attributes.h"
 
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 namespace candela {
 

@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "bsdf/material_inputs.h"
 #include "scene/coplanar_overlap.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 #include "scene/scene_parts.h"
 
 namespace candela {

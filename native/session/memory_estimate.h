@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/params.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 namespace candela {
 

@@ -17,7 +17,7 @@
 #include "film/aov_film.h"
 #include "film/film.h"
 #include "integrators/integrator.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 #include "session/memory_estimate.h"
 
 namespace candela {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 #include "texture/node_math.h"
 
 namespace candela {

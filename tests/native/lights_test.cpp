@@ -8,7 +8,7 @@
 #include "core/rng.h"
 #include "lights/light.h"
 #include "lights/light_bounds.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 namespace candela {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "bsdf/material_inputs.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 #include "texture/shader_program.h"
 
 namespace candela::test {

@@ -8,7 +8,7 @@
 #include "core/params.h"
 #include "core/vec.h"
 #include "integrators/render_context.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 namespace candela {
 class Scene;

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "core/params.h"
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 namespace candela::test {
 

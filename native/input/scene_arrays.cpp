@@ -1,4 +1,4 @@
-#include "scene/scene_arrays.h"
+#include "input/scene_arrays.h"
 
 #include <cmath>
 #include <cstring>
