@@ -2,24 +2,29 @@
 
 #include "core/error.h"
 #include "integrators/path/path_integrator.h"
+#include "integrators/path/path_settings.h"
 
 namespace candela {
 
 const std::vector<IntegratorEntry>& integrator_registry() {
     static const std::vector<IntegratorEntry> registry = {
-        {"PATH", "Path tracing with next-event estimation and multiple importance sampling", &make_path_integrator},
+        {"PATH", "Path Tracing", "Path tracing with next-event estimation and multiple importance sampling",
+         &make_path_integrator, &PathSettings::specs},
     };
     return registry;
 }
 
-std::unique_ptr<Integrator> make_integrator(const Params& params) {
-    const std::string name = params.get<std::string>("integrator", "PATH");
+const IntegratorEntry& find_integrator(const std::string& name) {
     std::string names;
     for (const auto& e : integrator_registry()) {
-        if (name == e.name) return e.create(params);
+        if (name == e.name) return e;
         names += (names.empty() ? "" : ", ") + std::string(e.name);
     }
     throw InvalidParameter("unknown integrator '" + name + "' (available: " + names + ")");
+}
+
+std::unique_ptr<Integrator> make_integrator(const Params& params) {
+    return find_integrator(params.get<std::string>("integrator", "PATH")).create(params);
 }
 
 }  // namespace candela

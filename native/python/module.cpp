@@ -210,8 +210,13 @@ PYBIND11_MODULE(_native, m) {
                  const SessionProgress p = s.progress();
                  py::dict d;
                  d["phase"] = phase_name(p.phase);
-                 d["samples_done"] = p.samples_done;
-                 d["samples_total"] = p.samples_total;
+                 // samples_done/samples_total: the progress in the integrator's unit ("unit").
+                 d["samples_done"] = p.work_done;
+                 d["samples_total"] = p.work_total;
+                 d["unit"] = p.unit;
+                 d["stage"] = p.stage.name;
+                 d["stage_done"] = p.stage.done;
+                 d["stage_total"] = p.stage.total;
                  d["fraction"] = p.fraction;
                  d["elapsed_s"] = p.elapsed_s;
                  d["relative_error"] = p.relative_error >= 0.0 ? py::object(py::float_(p.relative_error)) : py::none();

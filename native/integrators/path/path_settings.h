@@ -2,7 +2,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "core/param_spec.h"
 #include "core/params.h"
 #include "integrators/pixel_sampling.h"
 #include "lights/light_sample.h"
@@ -36,6 +38,8 @@ struct PathSettings {
     float ward_threshold = 0.05f;   // WARD: stop shadow-testing once the untested bound ≤ this × the tested light
 
     static PathSettings from_params(const Params& params);
+    /// The PATH integrator's own settings (besides common_param_specs()), as the add-on draws them.
+    static const std::vector<ParamSpec>& specs();
 };
 
 }  // namespace candela
