@@ -90,15 +90,15 @@ PathSettings PathSettings::from_params(const Params& params) {
     s.hemisphere_sampling = hs == "UNIFORM" ? HemisphereSampling::Uniform
                             : hs == "COSINE" ? HemisphereSampling::Cosine : HemisphereSampling::Bsdf;
     const std::string ls = read.get_enum("light_sampling");
-    s.light_sampling = ls == "BSDF_ONLY" ? LightSampling::BsdfOnly
-                       : ls == "LIGHT_ONLY" ? LightSampling::LightOnly : LightSampling::Mis;
-    s.mis_heuristic = read.get_enum("mis_heuristic") == "BALANCE" ? MisHeuristic::Balance : MisHeuristic::Power;
-    s.light_pdf = parse_light_pdf_mode(read.get_enum("light_pdf"));
+    s.direct.light_sampling = ls == "BSDF_ONLY" ? LightSampling::BsdfOnly
+                              : ls == "LIGHT_ONLY" ? LightSampling::LightOnly : LightSampling::Mis;
+    s.direct.mis_heuristic = read.get_enum("mis_heuristic") == "BALANCE" ? MisHeuristic::Balance : MisHeuristic::Power;
+    s.direct.light_pdf = parse_light_pdf_mode(read.get_enum("light_pdf"));
+    s.direct.light_samples = read.get_int("light_samples");
+    s.direct.ward_threshold = read.get_float("ward_threshold");
     s.light_selection = read.get_enum("light_selection");
-    s.light_samples = read.get_int("light_samples");
     s.branching_factor = read.get_int("branching_factor");
     s.clamp_indirect = read.get_float("clamp_indirect");
-    s.ward_threshold = read.get_float("ward_threshold");
     return s;
 }
 
