@@ -87,8 +87,8 @@ private:
     /// s mod k_noise_replicates = r): each replicate's sampler then sees its samples of the pixel as one run,
     /// which is what its per-pixel caches (Sobol seeds) amortise over. Only the order of the film's sums changes
     /// with this, not which samples are taken.
-    void render_pixel(int fx, int fy, int begin, int end, std::vector<Sampler>& replicates, PathStats& stats,
-                      PixelAccum& acc, AovAccum* aov_acc) const {
+    __attribute__((always_inline)) void render_pixel(int fx, int fy, int begin, int end, std::vector<Sampler>& replicates,
+                                                     PathStats& stats, PixelAccum& acc, AovAccum* aov_acc) const {
         for (int first = begin; first < std::min(end, begin + int(k_noise_replicates)); ++first)
             for (int s0 = first; s0 < end; s0 += k_group_size * int(k_noise_replicates))
                 render_group(fx, fy, s0, end, replicates[noise_replicate_of(uint32_t(s0))], stats, acc, aov_acc);
@@ -99,8 +99,8 @@ private:
     /// times faster than one by one. The group's rays are made first, then each path is traced with its sampler
     /// positioned again at its own sample (positioning is cheap within a pixel; the path draws only per-bounce
     /// dimensions after the camera's).
-    void render_group(int fx, int fy, int s0, int end, Sampler& sampler, PathStats& stats, PixelAccum& acc,
-                      AovAccum* aov_acc) const {
+    __attribute__((always_inline)) void render_group(int fx, int fy, int s0, int end, Sampler& sampler, PathStats& stats,
+                                                     PixelAccum& acc, AovAccum* aov_acc) const {
         const uint32_t replicate = noise_replicate_of(uint32_t(s0));
         Ray rays[k_group_size];
         int samples[k_group_size];
@@ -133,7 +133,7 @@ private:
 
     /// The camera ray of sample s of pixel (fx, fy): the sampler positioned there, the filter offset drawn by
     /// filter importance sampling, the lens point if the camera has an aperture.
-    Ray camera_ray(int fx, int fy, int s, Sampler& sampler) const {
+    __attribute__((always_inline)) Ray camera_ray(int fx, int fy, int s, Sampler& sampler) const {
         // Positioning and the filter draw in one visit, so the draw inlines.
         const Vec2 u_pixel = std::visit(
             [&](auto& concrete) {
@@ -148,7 +148,7 @@ private:
 
     /// Non-finite or negative radiance never reaches the film: it is dropped and counted. Debug builds stop right
     /// where it arises instead, naming the sample.
-    static Color checked_radiance(Color L, int fx, int fy, int s, PathStats& stats) {
+    static __attribute__((always_inline)) Color checked_radiance(Color L, int fx, int fy, int s, PathStats& stats) {
         if (is_finite(L) && !(min_component(L) < 0.f)) return L;
 #ifndef NDEBUG
         throw InternalError("non-finite or negative radiance at pixel (" + std::to_string(fx) + ", " +
