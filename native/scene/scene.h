@@ -34,6 +34,13 @@ struct SceneStats {
     size_t coplanar_objects = 0;    // objects with a coplanar overlapping rival (they get the tie-break filter)
 };
 
+/// A sphere enclosing everything a ray can hit (geometry and area lights) and the point lights: where light
+/// from the sun and the world enters the scene for light-rooted integrators.
+struct SceneSphere {
+    Vec3 center{0.f};
+    float radius = 1.f;
+};
+
 class Scene : private EmissionSource {
 public:
     /// Builds the scene; throws InvalidScene/InvalidParameter for bad input and Cancelled if `cancel`
@@ -59,6 +66,12 @@ public:
     /// (and the triangles at both ends where a filter runs, as in intersect()). d need not be a unit vector (t is
     /// then in units of |d|: a segment o → o + d is d with tmax ≤ 1).
     bool occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from = {},
+                  const PrimitiveRef& skip_to = {}) const {
+        return occluded(o, d, tmax, k_ray_shadow, skip_from, skip_to);
+    }
+    /// The same for a segment of another ray type: a connection to the camera is a CAMERA ray (objects hidden from
+    /// the camera do not block it), a shadow ray a SHADOW ray.
+    bool occluded(const Vec3& o, const Vec3& d, float tmax, RayType type, const PrimitiveRef& skip_from = {},
                   const PrimitiveRef& skip_to = {}) const;
     /// Closest emitting side of an area light along the ray before tmax·(1 + 1e-4): its index and distance. The
     /// margin mirrors the shadow rays' (they stop at 1 − 1e-4 of the light's distance), so a light lying in a
@@ -74,7 +87,14 @@ public:
     const Camera& camera() const { return m_camera; }
     const std::vector<Material>& materials() const { return m_materials; }
     const LightSet& lights() const { return m_lights; }
+    /// Half the diagonal of the bounds of the geometry and the point lights (what the lights are finalized with).
     float radius() const { return m_radius; }
+    /// The bounding sphere of the geometry, area lights and point lights (camera-world space).
+    const SceneSphere& bounds() const { return m_bounds; }
+    /// BSDF flags material k can have on either side, anywhere (k_bsdf_*: reflection, transmission, diffuse,
+    /// glossy, specular = a delta lobe): the constant BSDFs' flags, or for a textured material every flag its
+    /// closures can take for some input (a Glossy closure with a roughness texture may be delta somewhere).
+    uint32_t material_flags(uint32_t k) const { return k < m_material_flags.size() ? m_material_flags[k] : 0u; }
     const SceneStats& stats() const { return m_stats; }
 
     /// Holdout weight of the surface hit seen from wo (Cycles: 1 for a holdout object, else the material's
@@ -96,6 +116,8 @@ private:
     struct MeshShading;
     struct Placement;
     struct QueryContext;
+    struct Builder;  // scene/scene_build.cpp
+    friend struct Builder;
     void build(const SceneArrays& arrays, const CancelToken* cancel);
     /// The SurfaceHit of Embree's hit (geometry, triangle, instance ids, barycentrics, unnormalised Ng) at
     /// distance t along `ray`.
@@ -151,6 +173,8 @@ private:
     LightSet m_lights;
     Vec3 m_offset;  // added to world positions: −camera position
     float m_radius = 1.f;
+    SceneSphere m_bounds;
+    std::vector<uint32_t> m_material_flags;  // per material: material_flags()
     SceneStats m_stats;
 };
 
