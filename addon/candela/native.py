@@ -10,7 +10,7 @@ import os
 import sys
 
 # Must equal `_native.ABI_VERSION`; bump both together whenever the array schema or params change incompatibly.
-ABI_VERSION = 4
+ABI_VERSION = 5
 
 module = None   # the loaded candela._native, or None
 error = None    # why it is None

@@ -86,14 +86,27 @@ def shader_enum(key):
 
 
 def integrators():
-    """((name, description), ...): the native registry lists names or (name, description) pairs."""
+    """((name, description, label), ...) of the native registry (names only in the fallback)."""
     result = []
     for entry in _cap("integrators", INTEGRATORS):
         if isinstance(entry, str):
-            result.append((entry, ""))
-        else:
-            result.append((str(entry[0]), str(entry[1]) if len(entry) > 1 else ""))
+            entry = (entry,)
+        name = str(entry[0])
+        description = str(entry[1]) if len(entry) > 1 else ""
+        label = str(entry[2]) if len(entry) > 2 else name.replace("_", " ").title()
+        result.append((name, description, label))
     return tuple(result)
+
+
+def integrator_params():
+    """{integrator: [published setting spec, ...]} (core/param_spec.h): each integrator's own settings, in the
+    order its panels draw them; {} without the native module."""
+    return {str(name): list(specs) for name, specs in _cap("integrator_params", {}).items()}
+
+
+def common_params():
+    """The settings every integrator reads (samples, seed, sampler, filter, transparency, stopping rules)."""
+    return list(_cap("common_params", []))
 
 
 def row(columns, values):

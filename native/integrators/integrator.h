@@ -37,7 +37,11 @@ struct IntegratorEntry {
     const char* label;        // what the menu shows ("Path Tracing")
     const char* description;  // the tooltip
     std::unique_ptr<Integrator> (*create)(const Params&);
-    const std::vector<ParamSpec>& (*specs)();  // its own settings, in the order its panel draws them
+    const std::vector<ParamSpec>& (*specs)();  // its own settings, in the order its panels draw them
+    /// The memory its own data will take for these params and a film of `film_pixels` (photon maps, caches,
+    /// splat buffers), for the session's estimate; null: nothing beyond the scene and the film. It may throw
+    /// InvalidParameter naming the setting whose budget cannot fit.
+    double (*memory_bytes)(const Params& params, double film_pixels) = nullptr;
 };
 
 const std::vector<IntegratorEntry>& integrator_registry();

@@ -10,6 +10,7 @@
 #include "film/exr_io.h"
 #include "film/pixel_filter.h"
 #include "integrators/integrator.h"
+#include "integrators/pixel_sampling.h"
 #include "lights/light.h"
 #include "sampling/sampler.h"
 #include "scene/ray_visibility.h"
@@ -22,7 +23,9 @@ using namespace candela;
 
 namespace {
 
-constexpr int k_abi_version = 4;  // 2: closure table; 3: shader programs, textures, UVs; 4: light column visible_camera, vertex_normals
+// 2: closure table; 3: shader programs, textures, UVs; 4: light column visible_camera, vertex_normals; 5: published
+// integrator settings (capabilities' integrator_params, common_params), progress in the integrator's unit and stages.
+constexpr int k_abi_version = 5;
 
 template <typename T>
 void add_array(SceneArrays& arrays, const std::string& key, ElemType type, const py::handle& value) {
@@ -90,11 +93,63 @@ std::unique_ptr<Session> make_session(const py::dict& arrays_dict, const py::dic
     return session;
 }
 
+/// A published setting as the add-on builds its property from it (core/param_spec.h).
+py::dict spec_dict(const ParamSpec& s) {
+    py::dict d;
+    d["key"] = s.key;
+    d["label"] = s.label;
+    d["description"] = s.description;
+    d["group"] = s.group;
+    d["active_if"] = s.active_if;
+    switch (s.type) {
+        case ParamType::Bool:
+            d["type"] = "BOOL";
+            d["default"] = s.default_value != 0.0;
+            break;
+        case ParamType::Int:
+            d["type"] = "INT";
+            d["default"] = int64_t(s.default_value);
+            d["min"] = int64_t(s.min);
+            d["max"] = int64_t(s.max);
+            d["soft_max"] = int64_t(s.soft_max > 0.0 ? s.soft_max : s.max);
+            break;
+        case ParamType::Float:
+            d["type"] = "FLOAT";
+            d["default"] = s.default_value;
+            d["min"] = s.min;
+            d["max"] = s.max;
+            d["soft_max"] = s.soft_max > 0.0 ? s.soft_max : s.max;
+            break;
+        case ParamType::Enum: {
+            d["type"] = "ENUM";
+            d["default"] = s.default_item;
+            py::list items;
+            for (const EnumItem& item : s.items) items.append(py::make_tuple(item.id, item.label, item.description));
+            d["items"] = items;
+            break;
+        }
+    }
+    return d;
+}
+
+py::list spec_list(const std::vector<ParamSpec>& specs) {
+    py::list out;
+    for (const ParamSpec& s : specs) out.append(spec_dict(s));
+    return out;
+}
+
 py::dict capabilities() {
     py::dict d;
     py::list integrators;
-    for (const auto& e : integrator_registry()) integrators.append(py::make_tuple(e.name, e.description));
+    py::dict integrator_params;
+    for (const auto& e : integrator_registry()) {
+        integrators.append(py::make_tuple(e.name, e.description, e.label));
+        integrator_params[py::str(e.name)] = spec_list(e.specs());
+    }
     d["integrators"] = integrators;
+    d["integrator_params"] = integrator_params;
+    d["common_params"] = spec_list(common_param_specs());
+    d["target_arch"] = CANDELA_TARGET_ARCH;
     d["samplers"] = sampler_names();
     d["pixel_filters"] = PixelFilter::names();
     d["material_columns"] = material_columns();
