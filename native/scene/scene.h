@@ -15,6 +15,7 @@
 #include "core/params.h"
 #include "core/transform.h"
 #include "lights/light.h"
+#include "lights/light_emission.h"
 #include "scene/camera.h"
 #include "scene/embree_device.h"
 #include "scene/ray_visibility.h"
@@ -32,13 +33,6 @@ struct SceneStats {
     size_t embree_bytes = 0;        // what Embree holds: vertex/index buffers and BVHs (its memory monitor)
     size_t shading_bytes = 0;       // Candela's per-triangle shading data and per-instance placements
     size_t coplanar_objects = 0;    // objects with a coplanar overlapping rival (they get the tie-break filter)
-};
-
-/// A sphere enclosing everything a ray can hit (geometry and area lights) and the point lights: where light
-/// from the sun and the world enters the scene for light-rooted integrators.
-struct SceneSphere {
-    Vec3 center{0.f};
-    float radius = 1.f;
 };
 
 class Scene : private EmissionSource {
