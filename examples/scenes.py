@@ -4,7 +4,7 @@
 
 Scenes: "cornell_box" (examples/cornell_box.py), "soft_shadow" (an area light, a blocker and its penumbra),
 "veach_mis" (Veach's four glossy plates under four spheres of equal power and very different sizes,
-verification-cases.md §8.3, converted to Blender's Z-up), "glossy" (glossy and diffuse spheres under an area
+docs/verification.md §8.2, converted to Blender's Z-up), "glossy" (glossy and diffuse spheres under an area
 light and a dim sky), "many_lights" (64 small point lights of very different powers over blocks on a floor,
 for the light-selection strategies). Every builder clears the scene and applies the shared render settings of
 cornell_box.configure_render / configure_cycles / configure_candela (same bounces, filter and seed).
@@ -147,7 +147,7 @@ def _mitsuba(rows):
 
 
 def build_veach_mis(scene):
-    """Veach's MIS scene (Bitterli's conversion; verification-cases.md §8.3). Plates: Beckmann α 0.01 / 0.05 /
+    """Veach's MIS scene (Bitterli's conversion; docs/verification.md §8.2). Plates: Beckmann α 0.01 / 0.05 /
     0.1 / 0.25, i.e. Cycles roughness √α; reflectance 0.3 stands in for the conductor's. Lights: Veach's four
     spheres (radii 0.9, 0.3, 0.1, 0.0333 at z = −3.75 … 3.75) with Bitterli's power, L·r² = 7.59909, as in
     tests/native/veach_mis_test.cpp."""
