@@ -20,6 +20,10 @@ ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const
     const float n_len = length(n_object);
     in.normal_object = n_len > 0.f ? n_object / n_len : Vec3(0.f, 0.f, 1.f);
     in.incoming = wo;
+    in.backfacing = dot(wo, hit.ng) < 0.f;
+    in.position = hit.p - m_offset;
+    in.true_normal = hit.ng;
+    in.object_location = pl.object_to_world.translation() - m_offset;
     Vec3 tangent;
     if (attr.tangent_at(prim.prim, hit.b1, hit.b2, &tangent, &in.tangent_sign)) {
         in.tangent = pl.object_to_world.vector(tangent);

@@ -24,8 +24,8 @@ Vec3 equirectangular_to_direction(float u, float v) {
 
 ShadingInputs ShadingInputs::world(const Vec3& d) {
     ShadingInputs in;
-    in.generated = in.object = in.incoming = d;
-    in.normal = in.normal_object = -d;
+    in.generated = in.object = in.incoming = in.position = d;
+    in.normal = in.normal_object = in.true_normal = -d;
     return in;
 }
 
@@ -93,6 +93,14 @@ Vec3 coord(const ShadingInputs& in, CoordKind kind) {
         case CoordKind::Normal: return in.normal_object;
         case CoordKind::WorldNormal: return in.normal;
         case CoordKind::Incoming: return in.incoming;
+        case CoordKind::Position: return in.position;
+        case CoordKind::TrueNormal: return in.true_normal;
+        case CoordKind::Backfacing: return Vec3(in.backfacing ? 1.f : 0.f);
+        case CoordKind::Reflection: {
+            const Vec3 n = in.backfacing ? -in.normal : in.normal;
+            return n * (2.f * dot(n, in.incoming)) - in.incoming;
+        }
+        case CoordKind::ObjectLocation: return in.object_location;
     }
     return Vec3(0.f);
 }
@@ -171,6 +179,7 @@ void ShaderLibrary::evaluate(uint32_t p, const ShadingInputs& in, Vec3* regs) co
                 out = vmax(a * k + Vec3(off), Vec3(0.f));
                 break;
             }
+            default: out = evaluate_node(op, regs, in); break;
         }
         // A non-finite value (overflowing math) must never reach a BSDF or the film.
         if (!is_finite(out)) out = Vec3(std::isfinite(out.x) ? out.x : 0.f, std::isfinite(out.y) ? out.y : 0.f,

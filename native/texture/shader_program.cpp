@@ -13,11 +13,15 @@ namespace candela {
 const std::vector<std::string>& shader_op_names() {
     static const std::vector<std::string> names = {
         "CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE", "AVERAGE",
-        "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST"};
+        "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE", "TEX_WHITE_NOISE",
+        "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER", "TEX_GRADIENT", "TEX_BRICK",
+        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL"};
     return names;
 }
 const std::vector<std::string>& coord_kind_names() {
-    static const std::vector<std::string> names = {"UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING"};
+    static const std::vector<std::string> names = {"UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING",
+                                                   "POSITION", "TRUE_NORMAL", "BACKFACING", "REFLECTION",
+                                                   "OBJECT_LOCATION"};
     return names;
 }
 const std::vector<std::string>& image_projection_names() {
@@ -31,6 +35,54 @@ const std::vector<std::string>& color_model_names() {
 const std::vector<std::string>& normal_map_space_names() {
     static const std::vector<std::string> names = {"TANGENT", "OBJECT", "WORLD", "BLENDER_OBJECT", "BLENDER_WORLD"};
     return names;
+}
+
+const std::vector<std::string>& musgrave_type_names() {
+    static const std::vector<std::string> names = {"MULTIFRACTAL", "FBM", "HYBRID_MULTIFRACTAL", "RIDGED_MULTIFRACTAL",
+                                                   "HETERO_TERRAIN"};
+    return names;
+}
+const std::vector<std::string>& voronoi_feature_names() {
+    static const std::vector<std::string> names = {"F1", "F2", "SMOOTH_F1", "DISTANCE_TO_EDGE", "N_SPHERE_RADIUS"};
+    return names;
+}
+const std::vector<std::string>& voronoi_metric_names() {
+    static const std::vector<std::string> names = {"EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINKOWSKI"};
+    return names;
+}
+const std::vector<std::string>& wave_type_names() {
+    static const std::vector<std::string> names = {"BANDS", "RINGS"};
+    return names;
+}
+const std::vector<std::string>& wave_profile_names() {
+    static const std::vector<std::string> names = {"SIN", "SAW", "TRI"};
+    return names;
+}
+const std::vector<std::string>& gradient_type_names() {
+    static const std::vector<std::string> names = {"LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "SPHERICAL",
+                                                   "QUADRATIC_SPHERE", "RADIAL"};
+    return names;
+}
+const std::vector<std::string>& vector_math_op_names() {
+    static const std::vector<std::string> names = {
+        "ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "CROSS_PRODUCT", "PROJECT", "REFLECT", "REFRACT",
+        "FACEFORWARD", "DOT_PRODUCT", "DISTANCE", "LENGTH", "SCALE", "NORMALIZE", "ABSOLUTE", "MINIMUM", "MAXIMUM",
+        "FLOOR", "CEIL", "FRACTION", "MODULO", "WRAP", "SNAP", "SINE", "COSINE", "TANGENT"};
+    return names;
+}
+const std::vector<std::string>& map_range_type_names() {
+    static const std::vector<std::string> names = {"LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"};
+    return names;
+}
+
+uint32_t shader_op_register_immediates(ShaderOpCode code) {
+    switch (code) {
+        case ShaderOpCode::TexMusgrave:
+        case ShaderOpCode::TexChecker: return 0b001;
+        case ShaderOpCode::TexBrick:
+        case ShaderOpCode::MapRange: return 0b111;
+        default: return 0;
+    }
 }
 
 namespace {
@@ -50,10 +102,24 @@ int arity(ShaderOpCode code) {
         case ShaderOpCode::Mapping: return 1;
         case ShaderOpCode::NormalMap:
         case ShaderOpCode::Invert: return 2;
+        case ShaderOpCode::TexGradient: return 1;
+        case ShaderOpCode::TexWhiteNoise:
+        case ShaderOpCode::TexMagic:
+        case ShaderOpCode::LayerWeight:
+        case ShaderOpCode::Fresnel: return 2;
         case ShaderOpCode::Mix:
         case ShaderOpCode::Math:
         case ShaderOpCode::Combine:
-        case ShaderOpCode::BrightContrast: return 3;
+        case ShaderOpCode::BrightContrast:
+        case ShaderOpCode::TexNoise:
+        case ShaderOpCode::TexMusgrave:
+        case ShaderOpCode::TexVoronoi:
+        case ShaderOpCode::TexWave:
+        case ShaderOpCode::TexChecker:
+        case ShaderOpCode::TexBrick:
+        case ShaderOpCode::VectorMath:
+        case ShaderOpCode::MapRange:
+        case ShaderOpCode::HueSaturation: return 3;
     }
     return 0;
 }
@@ -111,12 +177,18 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
             const std::string where = "shader program " + std::to_string(p) + ", operation " + std::to_string(r);
             const int n = arity(op.code);
             const uint32_t args[3] = {op.a, op.b, op.c};
-            bool varying = op.code == ShaderOpCode::Coord || op.code == ShaderOpCode::NormalMap;
-            for (int j = 0; j < n; ++j) {
-                if (args[j] >= r)
+            // Nodes that read the shading point themselves (the normal, the view direction) vary with it.
+            bool varying = op.code == ShaderOpCode::Coord || op.code == ShaderOpCode::NormalMap ||
+                           op.code == ShaderOpCode::LayerWeight || op.code == ShaderOpCode::Fresnel;
+            std::vector<uint32_t> reads(args, args + n);
+            const uint32_t imm_regs = shader_op_register_immediates(op.code);
+            for (int j = 0; j < 4; ++j)
+                if (imm_regs & (1u << j)) reads.push_back(op.i[j]);
+            for (const uint32_t reg : reads) {
+                if (reg >= r)
                     throw InvalidScene(where + " (" + shader_op_names()[size_t(op.code)] + ") reads register " +
-                                       std::to_string(args[j]) + ", which is not computed before it");
-                varying = varying || m_varying[begin + args[j]] != 0;
+                                       std::to_string(reg) + ", which is not computed before it");
+                varying = varying || m_varying[begin + reg] != 0;
             }
             m_varying[k] = varying ? 1 : 0;
             auto need = [&](bool ok, const std::string& what) {
@@ -143,6 +215,36 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
                     break;
                 case ShaderOpCode::Mapping: need(size_t(op.i[0]) + 12 <= m_consts.size(), "matrix offset out of range"); break;
                 case ShaderOpCode::NormalMap: need(op.i[0] < normal_map_space_names().size(), "unknown normal map space"); break;
+                case ShaderOpCode::TexNoise:
+                case ShaderOpCode::TexWhiteNoise:
+                    need(op.i[0] >= 1 && op.i[0] <= 4, "dimensions must be 1 to 4");
+                    need(op.i[1] < 2, "unknown output");
+                    break;
+                case ShaderOpCode::TexMusgrave:
+                    need(op.i[1] >= 1 && op.i[1] <= 4, "dimensions must be 1 to 4");
+                    need(op.i[2] < musgrave_type_names().size(), "unknown Musgrave type");
+                    break;
+                case ShaderOpCode::TexVoronoi:
+                    need(op.i[0] >= 1 && op.i[0] <= 4, "dimensions must be 1 to 4");
+                    need(op.i[1] < voronoi_feature_names().size(), "unknown Voronoi feature");
+                    need(op.i[2] < voronoi_metric_names().size(), "unknown Voronoi distance metric");
+                    need(op.i[3] < 5, "unknown output");
+                    break;
+                case ShaderOpCode::TexWave:
+                    need(op.i[0] < wave_type_names().size(), "unknown wave type");
+                    need(op.i[1] < 4, "unknown wave direction");
+                    need(op.i[2] < wave_profile_names().size(), "unknown wave profile");
+                    break;
+                case ShaderOpCode::TexMagic: need(op.i[0] <= 10 && op.i[1] < 2, "depth must be 0 to 10, output 0 or 1"); break;
+                case ShaderOpCode::TexChecker: need(op.i[1] < 2, "unknown output"); break;
+                case ShaderOpCode::TexGradient: need(op.i[0] < gradient_type_names().size(), "unknown gradient type"); break;
+                case ShaderOpCode::TexBrick: need(size_t(op.i[3]) + 5 <= m_consts.size(), "constant offset out of range"); break;
+                case ShaderOpCode::VectorMath:
+                    need(op.i[0] < vector_math_op_names().size(), "unknown vector math operation");
+                    need(op.i[1] < 2, "unknown output");
+                    break;
+                case ShaderOpCode::MapRange: need((op.i[3] & 0xFFu) < map_range_type_names().size(), "unknown map range type"); break;
+                case ShaderOpCode::LayerWeight: need(op.i[0] < 2, "unknown output"); break;
                 default: break;
             }
         }

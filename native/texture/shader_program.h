@@ -36,14 +36,54 @@ enum class ShaderOpCode : uint32_t {
     NormalMap,       // a: colour, b: strength; i0: NormalMapSpace
     Invert,          // a: factor, b: colour
     BrightContrast,  // a: colour, b: bright, c: contrast
+    // Procedural textures (texture/procedural.h, texture/voronoi.h). "(x, y, z)" is one register's channels; a
+    // "register i_k" immediate names a further input register (shader_op_register_immediates()).
+    TexNoise,        // a: vector, b: (w, scale, detail), c: (roughness, distortion, -); i0: dimensions, i1: 0 fac, 1 colour
+    TexWhiteNoise,   // a: vector, b: (w, -, -); i0: dimensions, i1: 0 value, 1 colour
+    TexMusgrave,     // a: vector, b: (w, scale, detail), c: (dimension, lacunarity, offset); i0: register (gain);
+                     // i1: dimensions, i2: musgrave_types
+    TexVoronoi,      // a: vector, b: (w, scale, smoothness), c: (exponent, randomness, -); i0: dimensions,
+                     // i1: voronoi_features, i2: voronoi_metrics, i3: 0 distance, 1 colour, 2 position, 3 w, 4 radius
+    TexWave,         // a: vector, b: (scale, distortion, detail), c: (detail scale, detail roughness, phase);
+                     // i0: wave_types, i1: direction (X, Y, Z, diagonal/spherical), i2: wave_profiles
+    TexMagic,        // a: vector, b: (scale, distortion, -); i0: depth, i1: 0 colour, 1 fac
+    TexChecker,      // a: vector, b: colour 1, c: colour 2; i0: register (scale); i1: 0 colour, 1 fac
+    TexGradient,     // a: vector; i0: gradient_types
+    TexBrick,        // a: vector, b: colour 1, c: colour 2; i0: register (mortar colour), i1: register (scale,
+                     // mortar size, mortar smooth), i2: register (bias, brick width, row height); i3: offset of 5
+                     // constants (offset, offset frequency, squash, squash frequency, output: 0 colour, 1 fac)
+    // Input and converter nodes.
+    VectorMath,      // a, b, c vectors; i0: vector_math_ops, i1: 0 vector result, 1 value result
+    MapRange,        // a: value(s), b: from min, c: from max; i0: register (to min), i1: register (to max),
+                     // i2: register (steps); i3: map_range_types | clamp << 8
+    HueSaturation,   // a: colour, b: (hue, saturation, value), c: fac
+    LayerWeight,     // a: normal, b: blend; i0: 0 Fresnel, 1 Facing
+    Fresnel,         // a: normal, b: IOR
 };
+/// Bit k set: immediate i_k of the operation is a register it reads (validated like a, b, c).
+uint32_t shader_op_register_immediates(ShaderOpCode code);
 const std::vector<std::string>& shader_op_names();
 
 /// What a COORD operation reads. Surfaces: UV (u, v, 0) of the render UV map, GENERATED (Blender's texture
 /// space: the object-space position normalised by the mesh's texture-space box), OBJECT (object-space
-/// position), NORMAL (object-space shading normal), WORLD_NORMAL, INCOMING (toward the viewer). The world:
-/// GENERATED, OBJECT and INCOMING are the view direction, NORMAL/WORLD_NORMAL its opposite, UV is 0.
-enum class CoordKind : uint32_t { Uv, Generated, Object, Normal, WorldNormal, Incoming };
+/// position), NORMAL (object-space shading normal), WORLD_NORMAL, INCOMING (toward the viewer), POSITION (the
+/// world position, Blender's world axes and origin), TRUE_NORMAL (the geometric normal), BACKFACING (1 when the
+/// viewer sees the back, else 0), REFLECTION (the view direction mirrored about the normal on the viewer's
+/// side, world space), OBJECT_LOCATION (the object's origin in world space). NORMAL, WORLD_NORMAL and
+/// TRUE_NORMAL are on the winding side. The world: GENERATED, OBJECT, POSITION, REFLECTION and INCOMING are the
+/// view direction, the normals its opposite, UV and OBJECT_LOCATION 0.
+enum class CoordKind : uint32_t {
+    Uv, Generated, Object, Normal, WorldNormal, Incoming, Position, TrueNormal, Backfacing, Reflection, ObjectLocation
+};
+// Procedural-texture enumerations by their Blender identifiers.
+const std::vector<std::string>& musgrave_type_names();
+const std::vector<std::string>& voronoi_feature_names();
+const std::vector<std::string>& voronoi_metric_names();
+const std::vector<std::string>& wave_type_names();
+const std::vector<std::string>& wave_profile_names();
+const std::vector<std::string>& gradient_type_names();
+const std::vector<std::string>& vector_math_op_names();
+const std::vector<std::string>& map_range_type_names();
 const std::vector<std::string>& coord_kind_names();
 
 enum class ImageProjection : uint32_t { Flat, Equirectangular, MirrorBall };
@@ -73,6 +113,10 @@ struct ShadingInputs {
     float tangent_sign = 1.f;
     bool has_tangent = false;
     Affine normal_to_world;  // object → world for normals (object-space normal maps)
+    bool backfacing = false;  // the viewer is on the back (against the winding normal): Cycles flips N there
+    Vec3 position{0.f};       // world position (Blender's origin, not camera-relative)
+    Vec3 true_normal{0.f, 0.f, 1.f};  // geometric normal, winding side
+    Vec3 object_location{0.f};        // the object's origin, world
 
     /// The inputs of the world shader for view direction d.
     static ShadingInputs world(const Vec3& d);
@@ -119,6 +163,8 @@ public:
 
 private:
     Vec3 ramp(uint32_t index, float fac, bool interpolate, bool alpha) const;
+    /// The procedural textures and converter nodes (texture/node_ops.cpp).
+    Vec3 evaluate_node(const ShaderOp& op, const Vec3* regs, const ShadingInputs& in) const;
 
     TexturePools m_pools;
     std::vector<ImageTexture> m_textures;

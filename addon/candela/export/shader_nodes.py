@@ -6,9 +6,11 @@ through reroutes, muted nodes (their internal pass-through) and node groups. Soc
 converts them: colour → value is Rec.709 luminance, vector → value the average of x, y, z, value → colour or vector
 a broadcast.
 
-Supported: Image Texture (flat projection), Environment Texture, Texture Coordinate (Generated, Normal, UV,
-Object), UV Map, Mapping, Normal Map, Mix (colour, float, vector), MixRGB, Math, ColorRamp, RGB, Value, Invert,
-Gamma, Bright/Contrast, RGB to BW, Separate/Combine Color, RGB, HSV and XYZ, Clamp. Any other node gives one
+Supported: Image Texture (flat projection), Environment Texture, the procedural textures (Noise, White Noise,
+Voronoi, Musgrave, Wave, Magic, Checker, Brick, Gradient: `procedural_nodes.py`), Texture Coordinate (Generated,
+Normal, UV, Object), UV Map, Mapping, Normal Map, Mix (colour, float, vector), MixRGB, Math, Vector Math, Map Range,
+ColorRamp, RGB, Value, Invert, Gamma, Bright/Contrast, Hue/Saturation, RGB to BW, Separate/Combine Color, RGB, HSV
+and XYZ, Clamp, Layer Weight, Fresnel. Any other node gives one
 warning per material naming it, and the socket it feeds keeps its own value (as if unlinked), never black by
 accident.
 """
@@ -16,6 +18,7 @@ accident.
 
 import mathutils
 
+from .procedural_nodes import ProceduralNodes
 from .shader_tables import MISSING_COLOR, Program, Reg, const3, is_const
 
 _INTERPOLATION = {"Closest": "CLOSEST", "Linear": "LINEAR", "Cubic": "CUBIC", "Smart": "CUBIC"}
@@ -69,7 +72,7 @@ def resolve(socket, ctx):
         return out, socket, ctx
 
 
-class NodeCompiler:
+class NodeCompiler(ProceduralNodes):
     """Compiles the input sockets of one material (or the world) into one Program."""
 
     def __init__(self, tables, owner, warnings, world=False):
@@ -162,15 +165,46 @@ class NodeCompiler:
         return self._image_lookup(node, out, ctx, projection, "GENERATED")
 
     def _ShaderNodeTexCoord(self, node, out, ctx):
-        if out.identifier == "Object" and getattr(node, "object", None) is not None:
-            self.unsupported(node, f"uses the space of another object ('{node.object.name}'), which is not "
-                                   "supported yet")
-            return None
-        kind = {"Generated": "GENERATED", "Normal": "NORMAL", "UV": "UV", "Object": "OBJECT"}.get(out.identifier)
+        if out.identifier == "Object" and getattr(node, "object", None) is not None and not self.world:
+            # Another object's space: its inverse world matrix applied to the world position.
+            return self.affine(node.object.matrix_world.inverted(), self.coord("POSITION"))
+        if out.identifier == "Camera" and not self.world:
+            camera = self.camera()
+            if camera is None:
+                self.unsupported(node, "output 'Camera' needs a scene camera")
+                return None
+            # Cycles' camera space looks down +Z (Blender's camera looks down −Z).
+            flip = mathutils.Matrix.Diagonal((1.0, 1.0, -1.0, 1.0))
+            return self.affine(flip @ camera.matrix_world.normalized().inverted(), self.coord("POSITION"))
+        kind = {"Generated": "GENERATED", "Normal": "NORMAL", "UV": "UV", "Object": "OBJECT",
+                "Reflection": "REFLECTION"}.get(out.identifier)
         if kind is None:
             self.unsupported(node, f"output '{out.name}' is not supported yet")
             return None
         return self.coord(kind)
+
+    def _ShaderNodeNewGeometry(self, node, out, ctx):
+        kind = {"Position": "POSITION", "Normal": "WORLD_NORMAL", "True Normal": "TRUE_NORMAL",
+                "Incoming": "INCOMING", "Backfacing": "BACKFACING"}.get(out.identifier)
+        if kind is None:
+            self.unsupported(node, f"output '{out.name}' is not supported yet")
+            return None
+        return self.coord(kind)
+
+    def _ShaderNodeObjectInfo(self, node, out, ctx):
+        if out.identifier != "Location":
+            self.unsupported(node, f"output '{out.name}' is not supported yet")
+            return None
+        return self.coord("OBJECT_LOCATION") if not self.world else (0.0, 0.0, 0.0)
+
+    def camera(self):
+        import bpy
+        return bpy.context.scene.camera
+
+    def affine(self, matrix, vector):
+        """A 4×4 matrix applied to a point (the MAPPING operation with its rows)."""
+        rows = [matrix[r][c] for r in range(3) for c in range(4)]
+        return self.program.op("MAPPING", vector, i=(self.tables.add_consts(rows), 0))
 
     def _ShaderNodeUVMap(self, node, out, ctx):
         if node.uv_map:
