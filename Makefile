@@ -50,6 +50,7 @@ accuracy: build
 # `make test` runs a quick mode).
 parity: build
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --build $(BUILD) --docs docs
+	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --nodes --build $(BUILD) --docs docs
 
 # docs/sampling.md and docs/sampling/*.png: one picture, error and time per sampling technique (~15 minutes;
 # the scenes' references are cached in build/sampling/cache).

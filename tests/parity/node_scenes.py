@@ -1,0 +1,291 @@
+"""Per-node parity scenes: one input or texture node feeding an Emission shader (strength 1), so the picture is
+the node's output itself and the comparison with Cycles isolates the node (no light transport, no lights, a black
+world). Built inside Blender; tests/parity/parity.py --nodes renders them with both engines.
+
+Geometry: PLANE, a 2 × 2 m grid (UVs 0..1) under a rotated, scaled, moved object transform, seen straight down by
+an orthographic camera that it fills (object, generated and UV coordinates all differ from world ones); SPHERE, a
+smooth UV sphere seen in perspective (normals and the view direction vary: Fresnel, Layer Weight, Geometry).
+
+Each scene: NODE_SCENES[name] = (geometry, graph), graph(nt, coord) returning the socket fed to the Emission colour;
+coord is a Texture Coordinate node. Values stay non-negative (emission is), so signed outputs go through
+Vector Math ABSOLUTE or are chosen non-negative.
+"""
+
+import math
+
+try:
+    import bmesh
+    import bpy
+    from mathutils import Euler, Matrix, Vector
+except ImportError:   # tests/parity/parity.py reads the scene lists outside Blender
+    bpy = None
+
+
+def node(nt, kind, props=None, **inputs):
+    n = nt.nodes.new(kind)
+    for key, value in (props or {}).items():
+        setattr(n, key, value)
+    for key, value in inputs.items():
+        n.inputs[key.replace("_", " ")].default_value = value
+    return n
+
+
+def link(nt, socket, n, name):
+    nt.links.new(socket, n.inputs[name])
+    return n
+
+
+def tex(kind, output="Fac", vector="Generated", props=None, **inputs):
+    """A texture node fed by a Texture Coordinate output (None: its own default)."""
+    def graph(nt, coord):
+        n = node(nt, kind, props, **inputs)
+        if vector is not None:
+            nt.links.new(coord.outputs[vector], n.inputs["Vector"])
+        return n.outputs[output]
+    return graph
+
+
+def absolute(graph):
+    """|graph| per channel (Vector Math ABSOLUTE), for signed outputs."""
+    def g(nt, coord):
+        n = node(nt, "ShaderNodeVectorMath", {"operation": "ABSOLUTE"})
+        nt.links.new(graph(nt, coord), n.inputs[0])
+        return n.outputs["Vector"]
+    return g
+
+
+def scaled(graph, factor):
+    def g(nt, coord):
+        n = node(nt, "ShaderNodeVectorMath", {"operation": "SCALE"}, Scale=factor)
+        nt.links.new(graph(nt, coord), n.inputs[0])
+        return n.outputs["Vector"]
+    return g
+
+
+def floored_white_noise(output, dims="3D"):
+    """White noise of ⌊7·generated⌋: exact integer-valued keys, so both engines hash the same bits (7, not 8: a
+    plane's Generated z is ½, which Cycles interpolates to ½ − 1 ulp at some points: ⌊8·z⌋ would flip there)."""
+    def g(nt, coord):
+        s = node(nt, "ShaderNodeVectorMath", {"operation": "SCALE"}, Scale=7.0)
+        nt.links.new(coord.outputs["Generated"], s.inputs[0])
+        f = node(nt, "ShaderNodeVectorMath", {"operation": "FLOOR"})
+        nt.links.new(s.outputs["Vector"], f.inputs[0])
+        w = node(nt, "ShaderNodeTexWhiteNoise", {"noise_dimensions": dims}, W=3.0)
+        nt.links.new(f.outputs["Vector"], w.inputs["Vector"])
+        return w.outputs[output]
+    return g
+
+
+def coord_output(name, fn=abs):
+    return absolute(lambda nt, coord: coord.outputs[name])
+
+
+def geometry_output(name):
+    def g(nt, coord):
+        return node(nt, "ShaderNodeNewGeometry").outputs[name]
+    return absolute(g) if name != "Backfacing" else g
+
+
+def object_coords_of_empty(nt, coord):
+    empty = bpy.data.objects.get("Frame")
+    c = node(nt, "ShaderNodeTexCoord", {"object": empty})
+    f = node(nt, "ShaderNodeVectorMath", {"operation": "FRACTION"})
+    nt.links.new(c.outputs["Object"], f.inputs[0])
+    return f.outputs["Vector"]
+
+
+def camera_coords(nt, coord):
+    m = node(nt, "ShaderNodeVectorMath", {"operation": "SCALE"}, Scale=0.25)
+    nt.links.new(coord.outputs["Camera"], m.inputs[0])
+    a = node(nt, "ShaderNodeVectorMath", {"operation": "ABSOLUTE"})
+    nt.links.new(m.outputs["Vector"], a.inputs[0])
+    return a.outputs["Vector"]
+
+
+def map_range(interpolation, clamp=True, **inputs):
+    def g(nt, coord):
+        sep = node(nt, "ShaderNodeSeparateXYZ")
+        nt.links.new(coord.outputs["Generated"], sep.inputs[0])
+        m = node(nt, "ShaderNodeMapRange", {"interpolation_type": interpolation, "clamp": clamp}, **inputs)
+        nt.links.new(sep.outputs["X"], m.inputs["Value"])
+        return m.outputs["Result"]
+    return g
+
+
+def vector_math(operation, output="Vector", **inputs):
+    def g(nt, coord):
+        v = node(nt, "ShaderNodeVectorMath", {"operation": operation})
+        for k, val in inputs.items():
+            v.inputs[int(k[1:])].default_value = val
+        nt.links.new(coord.outputs["Generated"], v.inputs[0])
+        return v.outputs[output]
+    return absolute(g) if output == "Vector" else g
+
+
+def hue_saturation(nt, coord):
+    n = tex("ShaderNodeTexNoise", "Color", Scale=3.0)(nt, coord)
+    h = node(nt, "ShaderNodeHueSaturation", Hue=0.3, Saturation=1.6, Value=1.2, Fac=0.8)
+    nt.links.new(n, h.inputs["Color"])
+    return h.outputs["Color"]
+
+
+def with_normal_input(kind, output, **inputs):
+    def g(nt, coord):
+        return node(nt, kind, **inputs).outputs[output]
+    return g
+
+
+# name → (geometry, graph)
+NODE_SCENES = {
+    "node_noise_3d": ("PLANE", tex("ShaderNodeTexNoise", Scale=4.0, Detail=3.0, Roughness=0.6, Distortion=0.5)),
+    "node_noise_color_3d": ("PLANE", tex("ShaderNodeTexNoise", "Color", Scale=3.0, Detail=2.5)),
+    "node_noise_1d": ("PLANE", tex("ShaderNodeTexNoise", "Color", props={"noise_dimensions": "1D"}, W=0.7,
+                                   Scale=2.0, Detail=1.5)),
+    "node_noise_2d": ("PLANE", tex("ShaderNodeTexNoise", props={"noise_dimensions": "2D"}, Scale=6.0, Detail=4.0,
+                                   Distortion=1.0)),
+    "node_noise_4d": ("PLANE", tex("ShaderNodeTexNoise", "Color", props={"noise_dimensions": "4D"}, W=1.3,
+                                   Scale=4.0, Detail=2.0, Distortion=0.3)),
+    "node_white_noise": ("PLANE", floored_white_noise("Value")),
+    "node_white_noise_color": ("PLANE", floored_white_noise("Color")),
+    "node_white_noise_color_4d": ("PLANE", floored_white_noise("Color", "4D")),
+    "node_voronoi_f1": ("PLANE", tex("ShaderNodeTexVoronoi", "Distance", Scale=6.0)),
+    "node_voronoi_color": ("PLANE", tex("ShaderNodeTexVoronoi", "Color", Scale=6.0)),
+    "node_voronoi_f2_manhattan": ("PLANE", tex("ShaderNodeTexVoronoi", "Distance",
+                                               props={"feature": "F2", "distance": "MANHATTAN"}, Scale=5.0)),
+    "node_voronoi_smooth_f1": ("PLANE", tex("ShaderNodeTexVoronoi", "Color", props={"feature": "SMOOTH_F1"},
+                                            Scale=4.0, Smoothness=0.7)),
+    "node_voronoi_edge": ("PLANE", tex("ShaderNodeTexVoronoi", "Distance", props={"feature": "DISTANCE_TO_EDGE"},
+                                       Scale=5.0)),
+    "node_voronoi_radius": ("PLANE", tex("ShaderNodeTexVoronoi", "Radius", props={"feature": "N_SPHERE_RADIUS"},
+                                         Scale=5.0)),
+    "node_voronoi_2d_chebychev": ("PLANE", tex("ShaderNodeTexVoronoi", "Color",
+                                               props={"voronoi_dimensions": "2D", "distance": "CHEBYCHEV"}, Scale=7.0)),
+    "node_voronoi_4d_minkowski": ("PLANE", tex("ShaderNodeTexVoronoi", "Distance",
+                                               props={"voronoi_dimensions": "4D", "distance": "MINKOWSKI"}, W=0.4,
+                                               Scale=4.0, Exponent=1.5)),
+    "node_voronoi_1d_position": ("PLANE", tex("ShaderNodeTexVoronoi", "W", props={"voronoi_dimensions": "1D"},
+                                              W=2.3, Scale=3.0)),
+    "node_voronoi_position": ("PLANE", absolute(tex("ShaderNodeTexVoronoi", "Position", Scale=5.0,
+                                                    Randomness=0.8))),
+    "node_musgrave_fbm": ("PLANE", absolute(tex("ShaderNodeTexMusgrave", Scale=3.0, Detail=3.5))),
+    "node_musgrave_multifractal": ("PLANE", tex("ShaderNodeTexMusgrave", props={"musgrave_type": "MULTIFRACTAL"},
+                                                Scale=3.0, Detail=3.0)),
+    "node_musgrave_hybrid": ("PLANE", absolute(tex("ShaderNodeTexMusgrave",
+                                                   props={"musgrave_type": "HYBRID_MULTIFRACTAL"}, Scale=3.0,
+                                                   Detail=4.0, Offset=0.6, Gain=1.2))),
+    "node_musgrave_ridged": ("PLANE", tex("ShaderNodeTexMusgrave", props={"musgrave_type": "RIDGED_MULTIFRACTAL"},
+                                          Scale=2.0, Detail=3.0, Offset=1.0, Gain=1.5)),
+    "node_musgrave_hetero": ("PLANE", absolute(tex("ShaderNodeTexMusgrave", props={"musgrave_type": "HETERO_TERRAIN"},
+                                                   Scale=3.0, Detail=2.5, Offset=0.5))),
+    "node_musgrave_2d": ("PLANE", absolute(tex("ShaderNodeTexMusgrave", props={"musgrave_dimensions": "2D"},
+                                               Scale=4.0, Detail=2.0))),
+    "node_wave_bands": ("PLANE", tex("ShaderNodeTexWave", Scale=2.0, Distortion=2.0, Detail=2.0)),
+    "node_wave_rings_saw": ("PLANE", tex("ShaderNodeTexWave", props={"wave_type": "RINGS", "wave_profile": "SAW"},
+                                         Scale=1.5)),
+    "node_wave_diagonal_tri": ("PLANE", tex("ShaderNodeTexWave", props={"bands_direction": "DIAGONAL",
+                                                                        "wave_profile": "TRI"}, Scale=1.0,
+                                            Phase_Offset=1.0)),
+    "node_magic": ("PLANE", tex("ShaderNodeTexMagic", "Color", Scale=3.0, Distortion=1.5)),
+    "node_magic_deep": ("PLANE", tex("ShaderNodeTexMagic", "Fac", props={"turbulence_depth": 6}, Scale=2.0)),
+    "node_checker": ("PLANE", tex("ShaderNodeTexChecker", "Color", Scale=7.0)),
+    "node_brick": ("PLANE", tex("ShaderNodeTexBrick", "Color", Scale=3.0, Mortar_Smooth=0.3, Bias=0.2)),
+    "node_brick_fac": ("PLANE", tex("ShaderNodeTexBrick", "Fac", props={"offset": 0.3, "squash": 0.6,
+                                                                        "squash_frequency": 3},
+                                    Scale=4.0, Mortar_Size=0.05)),
+    "node_gradient_linear": ("PLANE", tex("ShaderNodeTexGradient")),
+    "node_gradient_easing": ("PLANE", tex("ShaderNodeTexGradient", props={"gradient_type": "EASING"})),
+    "node_gradient_radial": ("PLANE", tex("ShaderNodeTexGradient", vector="Object",
+                                          props={"gradient_type": "RADIAL"})),
+    "node_gradient_sphere": ("PLANE", tex("ShaderNodeTexGradient", vector="Object",
+                                          props={"gradient_type": "QUADRATIC_SPHERE"})),
+    "node_gradient_diagonal": ("PLANE", tex("ShaderNodeTexGradient", props={"gradient_type": "DIAGONAL"})),
+    "node_texcoord_generated": ("PLANE", coord_output("Generated")),
+    "node_texcoord_uv": ("PLANE", coord_output("UV")),
+    "node_texcoord_object": ("PLANE", coord_output("Object")),
+    "node_texcoord_object_of_empty": ("PLANE", object_coords_of_empty),
+    "node_texcoord_camera": ("PLANE", camera_coords),
+    "node_texcoord_reflection": ("SPHERE", coord_output("Reflection")),
+    "node_texcoord_normal": ("SPHERE", coord_output("Normal")),
+    "node_geometry_position": ("PLANE", scaled(geometry_output("Position"), 0.5)),
+    "node_geometry_normal": ("SPHERE", geometry_output("Normal")),
+    "node_geometry_incoming": ("SPHERE", geometry_output("Incoming")),
+    "node_object_info_location": ("PLANE", absolute(lambda nt, c: node(nt, "ShaderNodeObjectInfo").outputs["Location"])),
+    "node_layer_weight_fresnel": ("SPHERE", with_normal_input("ShaderNodeLayerWeight", "Fresnel", Blend=0.3)),
+    "node_layer_weight_facing": ("SPHERE", with_normal_input("ShaderNodeLayerWeight", "Facing", Blend=0.7)),
+    "node_fresnel": ("SPHERE", with_normal_input("ShaderNodeFresnel", "Fac", IOR=1.8)),
+    "node_map_range_stepped": ("PLANE", map_range("STEPPED", To_Min=0.2, To_Max=0.9, Steps=5.0)),
+    "node_map_range_smoother": ("PLANE", map_range("SMOOTHERSTEP", From_Min=0.8, From_Max=0.1)),
+    "node_vector_math_cross": ("PLANE", vector_math("CROSS_PRODUCT", v1=(0.3, -0.5, 0.8))),
+    "node_vector_math_distance": ("PLANE", vector_math("DISTANCE", "Value", v1=(0.5, 0.5, 0.5))),
+    "node_vector_math_wrap": ("PLANE", vector_math("WRAP", v1=(0.3, 0.3, 0.3), v2=(0.0, 0.1, 0.0))),
+    "node_hue_saturation": ("PLANE", hue_saturation),
+}
+# The quick mode of `make test` (parity.py --nodes --quick) renders them all: emission only, a few seconds each.
+QUICK_NODE_SCENES = list(NODE_SCENES)
+
+
+def _grid(name, size=2.0, cuts=8):
+    bm = bmesh.new()
+    bm.loops.layers.uv.new("UVMap")   # create_grid fills an existing UV layer
+    bmesh.ops.create_grid(bm, x_segments=cuts, y_segments=cuts, size=size / 2.0, calc_uvs=True)
+    me = bpy.data.meshes.new(name)
+    bm.to_mesh(me)
+    bm.free()
+    return me
+
+
+def _camera(scene, location, rotation_deg, ortho_scale=None, lens=50.0):
+    cam = bpy.data.cameras.new("Camera")
+    if ortho_scale is not None:
+        cam.type, cam.ortho_scale = "ORTHO", ortho_scale
+    cam.lens, cam.clip_start, cam.clip_end = lens, 0.01, 100.0
+    ob = bpy.data.objects.new("Camera", cam)
+    ob.location = location
+    ob.rotation_euler = tuple(math.radians(a) for a in rotation_deg)
+    scene.collection.objects.link(ob)
+    scene.camera = ob
+    return ob
+
+
+def _emission_material(name, graph):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    em = nt.nodes.new("ShaderNodeEmission")
+    em.inputs["Strength"].default_value = 1.0
+    coord = nt.nodes.new("ShaderNodeTexCoord")
+    nt.links.new(graph(nt, coord), em.inputs["Color"])
+    nt.links.new(em.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def build_node_scene(name, scene, size=128, out_dir="."):
+    geometry, graph = NODE_SCENES[name]
+    scene.world = None
+    # Another object's space for Texture Coordinate > Object with an object.
+    frame = bpy.data.objects.new("Frame", None)
+    frame.matrix_world = Matrix.LocRotScale(Vector((0.3, -0.1, 0.2)), Euler((0.2, 0.1, 0.7)), Vector((0.5, 0.7, 0.6)))
+    scene.collection.objects.link(frame)
+    mat = _emission_material(name, graph)
+    if geometry == "PLANE":
+        me = _grid(name)
+        ob = bpy.data.objects.new(name, me)
+        ob.matrix_world = Matrix.LocRotScale(Vector((0.15, -0.1, 0.05)), Euler((0.0, 0.0, math.radians(20.0))),
+                                             Vector((1.3, 1.1, 1.0)))
+        _camera(scene, (0.1, -0.1, 3.0), (0.0, 0.0, 0.0), ortho_scale=1.7)
+    else:
+        bm = bmesh.new()
+        bmesh.ops.create_uvsphere(bm, u_segments=64, v_segments=32, radius=1.0)
+        me = bpy.data.meshes.new(name)
+        bm.to_mesh(me)
+        bm.free()
+        for poly in me.polygons:
+            poly.use_smooth = True
+        ob = bpy.data.objects.new(name, me)
+        ob.matrix_world = Matrix.LocRotScale(Vector((0.0, 0.0, 0.0)), Euler((0.3, 0.0, 0.5)), Vector((1.0, 1.0, 1.0)))
+        _camera(scene, (0.0, -4.5, 0.6), (82.0, 0.0, 0.0), lens=60.0)
+    me.materials.append(mat)
+    scene.collection.objects.link(ob)
+    return 1.0
