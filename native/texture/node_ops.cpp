@@ -1,5 +1,8 @@
 // The shader program's procedural-texture and converter operations: unpacking their registers and immediates
 // (texture/shader_program.h) into the node functions of texture/procedural.h, voronoi.h and converter_nodes.h.
+#include <cmath>
+
+#include "core/math.h"
 #include "texture/converter_nodes.h"
 #include "texture/procedural.h"
 #include "texture/shader_program.h"
@@ -10,6 +13,70 @@ namespace candela {
 namespace {
 
 Vec4 with_w(const Vec3& v, float w) { return {v.x, v.y, v.z, w}; }
+
+/// Cycles' Bump node from heights at p, p + dx, p + dy (dx, dy in the tangent plane): with the surface tangents
+/// Rx = dy × N, Ry = N × dx and det = dx·Rx, the height's surface gradient is ((h_x − h_c)·Rx + (h_y − h_c)·Ry)/det
+/// (Mikkelsen 2008, "Simulation of wrinkled surfaces revisited", eq. 4), and the bumped normal is
+/// normalize(N − distance·gradient), written without the division: normalize(|det|·N − distance·sign(det)·(…)).
+/// Strength blends it with N. Computed on the winding side (the viewer's side only negates everything).
+Vec3 bump_normal(const Vec3& n_in, const Vec3& dx, const Vec3& dy, float hc, float hx, float hy, float strength,
+                 float distance, bool invert) {
+    const float len = length(n_in);
+    if (!(len > 0.f)) return n_in;
+    const Vec3 n = n_in / len;
+    const Vec3 rx = cross(dy, n), ry = cross(n, dx);
+    const float det = dot(dx, rx);
+    const Vec3 surfgrad = rx * (hx - hc) + ry * (hy - hc);
+    if (invert) distance = -distance;
+    strength = std::fmax(strength, 0.f);
+    Vec3 out = n * std::fabs(det) - surfgrad * (distance * (det < 0.f ? -1.f : (det > 0.f ? 1.f : 0.f)));
+    const float out_len = length(out);
+    if (!(out_len > 0.f) || !std::isfinite(out_len)) return n;
+    out = out / out_len;
+    out = out * strength + n * (1.f - strength);
+    const float l2 = length(out);
+    return l2 > 0.f ? out / l2 : n;
+}
+
+/// Cycles' guard against shading normals that mirror the view direction below the surface (Cycles 2.90+,
+/// "ensure valid reflection"): if the reflection R of the view direction i about n dips under the threshold
+/// t = min(0.9·(ng·i), 0.01) above the geometric plane, n is tilted toward ng — within the plane of ng and n —
+/// just far enough that R·ng = t. With n' = x·X + z·ng (X the unit part of n orthogonal to ng, x = √(1 − z²)),
+/// R'·ng = 2(x·i_x + z·i_z)·z − i_z = t is a quadratic in z²: z² = (c ± b)/(2a) with a = i_x² + i_z²,
+/// b = √(i_x²·(a − t²)), c = i_z·t + a. Of the roots in (0, 1], the one whose reflection stays above the plane
+/// (the shallower one if both do) is taken; ng itself if none is. All vectors on the viewer's side.
+Vec3 valid_reflection(const Vec3& ng, const Vec3& i, const Vec3& n) {
+    const float t = std::fmin(0.9f * dot(ng, i), 0.01f);
+    const Vec3 r = n * (2.f * dot(n, i)) - i;
+    if (dot(ng, r) >= t) return n;
+    const Vec3 ortho = n - ng * dot(n, ng);
+    const float ortho_len = length(ortho);
+    if (!(ortho_len > 0.f)) return ng;
+    const Vec3 x_axis = ortho / ortho_len;
+    const float ix = dot(i, x_axis), iz = dot(i, ng);
+    const float a = ix * ix + iz * iz;
+    const float b = std::sqrt(std::fmax(ix * ix * (a - t * t), 0.f));
+    const float c = iz * t + a;
+    const float z2[2] = {0.5f * (c + b) / a, 0.5f * (c - b) / a};
+    float best_x = 0.f, best_z = 0.f, best_r = 0.f;
+    int found = 0;
+    for (const float q : z2) {
+        if (!(q > 1e-5f && q <= 1.f + 1e-5f)) continue;
+        const float z = std::sqrt(std::fmin(q, 1.f)), x = std::sqrt(std::fmax(1.f - q, 0.f));
+        const float rz = 2.f * (x * ix + z * iz) * z - iz;  // the new reflection's height over the plane
+        // Prefer a reflection above the plane; of two such, the shallower (closer to the input normal).
+        const bool better = found == 0 || (rz >= 1e-5f && (best_r < 1e-5f || rz < best_r)) ||
+                            (rz < 1e-5f && best_r < 1e-5f && rz > best_r);
+        if (better) {
+            best_x = x;
+            best_z = z;
+            best_r = rz;
+        }
+        ++found;
+    }
+    if (found == 0) return ng;
+    return x_axis * best_x + ng * best_z;
+}
 
 }  // namespace
 
@@ -93,9 +160,9 @@ Vec3 ShaderLibrary::evaluate_node(const ShaderOp& op, const Vec3* regs, const Sh
             p.brick_width = t.y;
             p.row_height = t.z;
             p.offset = k[0];
-            p.offset_frequency = int(k[1]);
+            p.offset_frequency = int(clamp(k[1], -65536.f, 65536.f));  // Blender's UI range is 1–99
             p.squash = k[2];
-            p.squash_frequency = int(k[3]);
+            p.squash_frequency = int(clamp(k[3], -65536.f, 65536.f));
             Vec3 color;
             const float f = brick_texture(a, p, b, c, regs[op.i[0]], &color);
             return k[4] == 1.f ? Vec3(f) : color;
@@ -120,6 +187,12 @@ Vec3 ShaderLibrary::evaluate_node(const ShaderOp& op, const Vec3* regs, const Sh
         case ShaderOpCode::LayerWeight:
             return Vec3(layer_weight(in.backfacing ? -a : a, in.incoming, b.x, in.backfacing, op.i[0] == 1));
         case ShaderOpCode::Fresnel: return Vec3(fresnel_node(in.backfacing ? -a : a, in.incoming, b.x, in.backfacing));
+        case ShaderOpCode::Bump: {
+            const Vec3& params = regs[op.i[0]];
+            const Vec3 n = bump_normal(regs[op.i[1]], in.dp[0], in.dp[1], a.x, b.x, c.x, params.x, params.y, op.i[2] != 0);
+            const float side = in.backfacing ? -1.f : 1.f;  // on the viewer's side for the check, then back
+            return valid_reflection(in.true_normal * side, in.incoming, n * side) * side;
+        }
         default: return Vec3(0.f);
     }
 }

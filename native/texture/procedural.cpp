@@ -6,6 +6,13 @@ namespace candela {
 
 namespace {
 
+/// float → int for lattice indices, defined for every input (the plain conversion is undefined past ±2³¹ and
+/// for NaN, which user coordinates and divisions by a zero row height can produce).
+int to_int(float x) {
+    if (!(x == x)) return 0;
+    return int(clamp(x, -1073741824.f, 1073741824.f));
+}
+
 // The offsets of the Noise Texture's distortion and colour channels: 100 + 100·hash(seed), per coordinate.
 float offset1(float seed) { return 100.f + 100.f * hash_to_float(seed); }
 float offset_n(float seed, float axis) { return 100.f + 100.f * hash_to_float(seed, axis); }
@@ -141,7 +148,7 @@ Vec3 magic_texture(const Vec3& co, int depth, float scale, float distortion) {
 float checker_texture(const Vec3& co, float scale) {
     // The shift keeps unit coordinates from falling exactly on a square's edge.
     const Vec3 p = (co * scale + Vec3(0.000001f)) * 0.999999f;
-    const int xi = std::abs(int(std::floor(p.x))), yi = std::abs(int(std::floor(p.y))), zi = std::abs(int(std::floor(p.z)));
+    const int xi = std::abs(to_int(std::floor(p.x))), yi = std::abs(to_int(std::floor(p.y))), zi = std::abs(to_int(std::floor(p.z)));
     return ((xi % 2 == yi % 2) == (zi % 2 == 1)) ? 1.f : 0.f;
 }
 
@@ -186,12 +193,12 @@ float brick_texture(const Vec3& co, const BrickParams& b, const Vec3& color1, co
                     Vec3* color) {
     const Vec3 p = co * b.scale;
     float brick_width = b.brick_width, offset = 0.f;
-    const int rownum = int(std::floor(p.y / b.row_height));
+    const int rownum = to_int(std::floor(p.y / b.row_height));
     if (b.offset_frequency && b.squash_frequency) {
         brick_width *= (rownum % b.squash_frequency) ? 1.f : b.squash;
         offset = (rownum % b.offset_frequency) ? 0.f : brick_width * b.offset;
     }
-    const int bricknum = int(std::floor((p.x + offset) / brick_width));
+    const int bricknum = to_int(std::floor((p.x + offset) / brick_width));
     const float x = (p.x + offset) - brick_width * float(bricknum);
     const float y = p.y - b.row_height * float(rownum);
     const float tint =

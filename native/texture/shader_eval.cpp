@@ -85,7 +85,19 @@ Vec3 normal_map(const ShadingInputs& in, NormalMapSpace space, const Color& colo
     return is_black(result) ? in.normal : result;
 }
 
-Vec3 coord(const ShadingInputs& in, CoordKind kind) {
+Vec3 coord(const ShadingInputs& in, CoordKind kind, uint32_t offset) {
+    // Offsets 1, 2 (Bump's finite differences) move the position-derived coordinates; the normals and the view
+    // direction stay (as in Cycles' bump evaluation).
+    if (offset != 0) {
+        const int k = int(offset) - 1;
+        switch (kind) {
+            case CoordKind::Uv: return in.uv + in.duv[k];
+            case CoordKind::Generated: return in.generated + in.dgenerated[k];
+            case CoordKind::Object: return in.object + in.dobject[k];
+            case CoordKind::Position: return in.position + in.dp[k];
+            default: break;
+        }
+    }
     switch (kind) {
         case CoordKind::Uv: return in.uv;
         case CoordKind::Generated: return in.generated;
@@ -135,7 +147,7 @@ void ShaderLibrary::evaluate(uint32_t p, const ShadingInputs& in, Vec3* regs) co
         Vec3 out(0.f);
         switch (op.code) {
             case ShaderOpCode::Const: out = Vec3(m_consts[op.i[0]], m_consts[op.i[0] + 1], m_consts[op.i[0] + 2]); break;
-            case ShaderOpCode::Coord: out = coord(in, CoordKind(op.i[0])); break;
+            case ShaderOpCode::Coord: out = coord(in, CoordKind(op.i[0]), op.i[1]); break;
             case ShaderOpCode::Image:
             case ShaderOpCode::ImageAlpha: {
                 const Vec2 uv = project(ImageProjection(op.i[3]), a);

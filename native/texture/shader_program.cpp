@@ -15,7 +15,7 @@ const std::vector<std::string>& shader_op_names() {
         "CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE", "AVERAGE",
         "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE", "TEX_WHITE_NOISE",
         "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER", "TEX_GRADIENT", "TEX_BRICK",
-        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL"};
+        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP"};
     return names;
 }
 const std::vector<std::string>& coord_kind_names() {
@@ -81,6 +81,7 @@ uint32_t shader_op_register_immediates(ShaderOpCode code) {
         case ShaderOpCode::TexChecker: return 0b001;
         case ShaderOpCode::TexBrick:
         case ShaderOpCode::MapRange: return 0b111;
+        case ShaderOpCode::Bump: return 0b011;
         default: return 0;
     }
 }
@@ -119,7 +120,8 @@ int arity(ShaderOpCode code) {
         case ShaderOpCode::TexBrick:
         case ShaderOpCode::VectorMath:
         case ShaderOpCode::MapRange:
-        case ShaderOpCode::HueSaturation: return 3;
+        case ShaderOpCode::HueSaturation:
+        case ShaderOpCode::Bump: return 3;
     }
     return 0;
 }
@@ -167,6 +169,7 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
     if (m_program_start.front() != 0 || m_program_start.back() != m_ops.size())
         throw InvalidScene("'shader_programs' must start at 0 and end at the operation count " + std::to_string(m_ops.size()));
     m_varying.assign(m_ops.size(), 0);
+    m_differentials.assign(m_program_start.size() - 1, 0);
     for (size_t p = 0; p + 1 < m_program_start.size(); ++p) {
         const uint32_t begin = m_program_start[p], end = m_program_start[p + 1];
         if (end <= begin) throw InvalidScene("shader program " + std::to_string(p) + " is empty (or the starts decrease)");
@@ -179,7 +182,8 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
             const uint32_t args[3] = {op.a, op.b, op.c};
             // Nodes that read the shading point themselves (the normal, the view direction) vary with it.
             bool varying = op.code == ShaderOpCode::Coord || op.code == ShaderOpCode::NormalMap ||
-                           op.code == ShaderOpCode::LayerWeight || op.code == ShaderOpCode::Fresnel;
+                           op.code == ShaderOpCode::LayerWeight || op.code == ShaderOpCode::Fresnel ||
+                           op.code == ShaderOpCode::Bump;
             std::vector<uint32_t> reads(args, args + n);
             const uint32_t imm_regs = shader_op_register_immediates(op.code);
             for (int j = 0; j < 4; ++j)
@@ -196,7 +200,11 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
             };
             switch (op.code) {
                 case ShaderOpCode::Const: need(size_t(op.i[0]) + 3 <= m_consts.size(), "constant offset out of range"); break;
-                case ShaderOpCode::Coord: need(op.i[0] < coord_kind_names().size(), "unknown coordinate kind"); break;
+                case ShaderOpCode::Coord:
+                    need(op.i[0] < coord_kind_names().size(), "unknown coordinate kind");
+                    need(op.i[1] < 3, "offset must be 0, 1 or 2");
+                    if (op.i[1] != 0) m_differentials[p] = 1;
+                    break;
                 case ShaderOpCode::Image:
                 case ShaderOpCode::ImageAlpha:
                     need(op.i[0] < m_textures.size(), "texture " + std::to_string(op.i[0]) + " does not exist");

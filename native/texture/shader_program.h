@@ -21,7 +21,7 @@ class SceneArrays;
 
 enum class ShaderOpCode : uint32_t {
     Const,           // i0: offset of 3 floats in shader_consts
-    Coord,           // i0: CoordKind
+    Coord,           // i0: CoordKind, i1: 0 at the point, 1/2 at the point moved by ShadingInputs::dp[0]/[1] (Bump)
     Image,           // a: vector; i0: texture, i1: TexInterpolation, i2: TexExtension, i3: ImageProjection
     ImageAlpha,      // as Image, the alpha channel
     Mix,             // a: factor, b: A, c: B; i0: MixBlend, i1: clamp factor, i2: clamp result, i3: per-channel factor
@@ -59,6 +59,8 @@ enum class ShaderOpCode : uint32_t {
     HueSaturation,   // a: colour, b: (hue, saturation, value), c: fac
     LayerWeight,     // a: normal, b: blend; i0: 0 Fresnel, 1 Facing
     Fresnel,         // a: normal, b: IOR
+    Bump,            // a, b, c: height at the point and at its two offsets; i0: register (strength, distance, -),
+                     // i1: register (normal), i2: invert
 };
 /// Bit k set: immediate i_k of the operation is a register it reads (validated like a, b, c).
 uint32_t shader_op_register_immediates(ShaderOpCode code);
@@ -117,6 +119,9 @@ struct ShadingInputs {
     Vec3 position{0.f};       // world position (Blender's origin, not camera-relative)
     Vec3 true_normal{0.f, 0.f, 1.f};  // geometric normal, winding side
     Vec3 object_location{0.f};        // the object's origin, world
+    // Bump's finite differences (set where the program has offset coordinates): two small world offsets in the
+    // tangent plane and what they change in the position-derived coordinates.
+    Vec3 dp[2], dobject[2], dgenerated[2], duv[2];
 
     /// The inputs of the world shader for view direction d.
     static ShadingInputs world(const Vec3& d);
@@ -149,6 +154,8 @@ public:
 
     size_t program_count() const { return m_program_start.empty() ? 0 : m_program_start.size() - 1; }
     uint32_t program_size(uint32_t p) const { return m_program_start[p + 1] - m_program_start[p]; }
+    /// True if program p reads coordinates at offset points (a Bump node): ShadingInputs::dp and friends.
+    bool uses_differentials(uint32_t p) const { return m_differentials[p] != 0; }
     /// True if register r of program p depends on the shading point (else it is the same everywhere).
     bool varying(uint32_t p, uint32_t r) const { return m_varying[m_program_start[p] + r] != 0; }
 
@@ -173,6 +180,7 @@ private:
     std::vector<ShaderOp> m_ops;
     std::vector<uint32_t> m_program_start;
     std::vector<uint8_t> m_varying;
+    std::vector<uint8_t> m_differentials;  // per program
     uint32_t m_max_size = 0;
 };
 

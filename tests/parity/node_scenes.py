@@ -129,6 +129,53 @@ def hue_saturation(nt, coord):
     return h.outputs["Color"]
 
 
+def bumped(height_graph, strength=1.0, distance=0.1, invert=False, then=None):
+    """The Bump node's normal (|n| per channel) from a height graph; `then(nt, normal_socket)` may use it."""
+    def g(nt, coord):
+        b = node(nt, "ShaderNodeBump", {"invert": invert}, Strength=strength, Distance=distance)
+        nt.links.new(height_graph(nt, coord), b.inputs["Height"])
+        if then is not None:
+            return then(nt, b.outputs["Normal"])
+        a = node(nt, "ShaderNodeVectorMath", {"operation": "ABSOLUTE"})
+        nt.links.new(b.outputs["Normal"], a.inputs[0])
+        return a.outputs["Vector"]
+    return g
+
+
+def _sinx(nt, coord):
+    sep = node(nt, "ShaderNodeSeparateXYZ")
+    nt.links.new(coord.outputs["Object"], sep.inputs[0])
+    m = node(nt, "ShaderNodeMath", {"operation": "MULTIPLY"})
+    m.inputs[1].default_value = 20.0
+    nt.links.new(sep.outputs["X"], m.inputs[0])
+    s = node(nt, "ShaderNodeMath", {"operation": "SINE"})
+    nt.links.new(m.outputs[0], s.inputs[0])
+    return s.outputs[0]
+
+
+def image_uv(nt, coord):
+    """A smooth 16 × 16 float image (a sum of sines) read through UV coordinates, linear interpolation."""
+    import numpy as np
+    img = bpy.data.images.get("bump_image")
+    if img is None:
+        img = bpy.data.images.new("bump_image", 16, 16, float_buffer=True)
+        y, x = np.mgrid[0:16, 0:16] / 16.0
+        v = 0.5 + 0.25 * np.sin(2 * np.pi * x) * np.cos(4 * np.pi * y)
+        px = np.ones((16, 16, 4), np.float32)
+        px[..., 0] = px[..., 1] = px[..., 2] = v
+        img.pixels.foreach_set(px.ravel())
+        img.pack()
+    t = node(nt, "ShaderNodeTexImage", {"image": img, "interpolation": "Cubic"})
+    nt.links.new(coord.outputs["UV"], t.inputs["Vector"])
+    return t.outputs["Color"]
+
+
+def layer_weight_of(nt, normal):
+    lw = node(nt, "ShaderNodeLayerWeight", Blend=0.4)
+    nt.links.new(normal, lw.inputs["Normal"])
+    return lw.outputs["Facing"]
+
+
 def with_normal_input(kind, output, **inputs):
     def g(nt, coord):
         return node(nt, kind, **inputs).outputs[output]
@@ -219,6 +266,14 @@ NODE_SCENES = {
     "node_vector_math_distance": ("PLANE", vector_math("DISTANCE", "Value", v1=(0.5, 0.5, 0.5))),
     "node_vector_math_wrap": ("PLANE", vector_math("WRAP", v1=(0.3, 0.3, 0.3), v2=(0.0, 0.1, 0.0))),
     "node_hue_saturation": ("PLANE", hue_saturation),
+    # sin(20·x): its finite differences are secants over one pixel, so this checks Cycles' offsets and frame.
+    "node_bump_sine": ("PLANE", bumped(lambda nt, c: _sinx(nt, c), distance=0.01)),
+    "node_bump_noise": ("PLANE", bumped(tex("ShaderNodeTexNoise", Scale=3.0, Detail=1.0), distance=0.2)),
+    "node_bump_image_uv": ("PLANE", bumped(image_uv, strength=0.8, distance=0.05)),
+    "node_bump_object_invert": ("PLANE", bumped(tex("ShaderNodeTexWave", vector="Object", Scale=1.0), distance=0.02,
+                                                invert=True)),
+    "node_bump_sphere": ("SPHERE", bumped(tex("ShaderNodeTexNoise", vector="Object", Scale=2.0, Detail=2.0),
+                                          distance=0.3, then=layer_weight_of)),
 }
 # The quick mode of `make test` (parity.py --nodes --quick) renders them all: emission only, a few seconds each.
 QUICK_NODE_SCENES = list(NODE_SCENES)

@@ -88,6 +88,22 @@ class _Reader:
         elif self._normal_from != (out.node.as_pointer(), out.identifier):
             self.warn(f"the closures use different Normal inputs; '{node.name}' uses the first one found")
 
+    def displacement(self, output):
+        """The Displacement output as a bump normal (Cycles' "bump only"; true displacement is not supported)."""
+        socket = output.inputs.get("Displacement")
+        if socket is None or not socket.is_linked:
+            return
+        method = getattr(getattr(self.material, "cycles", None), "displacement_method", "BUMP")
+        if method != "BUMP":
+            self.warn(f"displacement method {method} is rendered as bump mapping only")
+        normal = self.nodes.displacement_bump(socket)
+        if normal is None:
+            return
+        if self.normal is not None:
+            self.warn("the Displacement output and a BSDF's Normal input both set the normal; using the BSDF's")
+            return
+        self.normal = normal
+
     def distribution(self, node, supported=("GGX", "BECKMANN")):
         d = getattr(node, "distribution", "GGX")
         if d == "SHARP":
@@ -184,6 +200,7 @@ def read_material(material, warnings, tables=None):
     tables = tables if tables is not None else ShaderTables(warnings)
     reader = _Reader(material, warnings, tables)
     reader.walk(surface, (1.0, 1.0, 1.0))
+    reader.displacement(output)
     program = tables.add_program(reader.program)
     # A material of pure emission (or all-black closures) must not fall back to the base colour: mark it black.
     return {"base": (0.0, 0.0, 0.0) if not reader.closures else base, "emission": reader.emission,

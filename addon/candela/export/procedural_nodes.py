@@ -145,3 +145,33 @@ class ProceduralNodes:
 
     def _ShaderNodeFresnel(self, node, out, ctx):
         return self.program.op("FRESNEL", self.normal_input(node, ctx), self.scalar(node, "IOR", ctx))
+
+    def _ShaderNodeBump(self, node, out, ctx):
+        normal = self.normal_input(node, ctx)
+        height = node.inputs["Height"]
+        if not height.is_linked:
+            return normal
+        heights = self.at_offsets(lambda: self.input(height, ctx))
+        return self.bump(heights, self.scalar(node, "Strength", ctx), self.scalar(node, "Distance", ctx), normal,
+                         node.invert)
+
+    def displacement_bump(self, socket, ctx=()):
+        """The shading normal of a material's Displacement output in Cycles' "bump only" mode: the Displacement
+        node's (height − midlevel)·scale as a bump height of distance 1 (object scale not applied); None if
+        nothing varies or the producer is not a Displacement node."""
+        from .shader_nodes import resolve
+        out, _, ctx = resolve(socket, ctx)
+        if out is None:
+            return None
+        node = out.node
+        if node.bl_idname != "ShaderNodeDisplacement":
+            self.unsupported(node, "feeds the Displacement output directly (only a Displacement node is read)")
+            return None
+        p = self.program
+
+        def height():
+            h = self.scalar(node, "Height", ctx)
+            return p.mul(p.math("SUBTRACT", h, self.scalar(node, "Midlevel", ctx)), self.scalar(node, "Scale", ctx))
+        normal = self.normal_input(node, ctx)
+        result = self.bump(self.at_offsets(height), 1.0, 1.0, normal)
+        return None if result is normal else result

@@ -80,6 +80,7 @@ class NodeCompiler(ProceduralNodes):
         self.program = Program(tables)
         self.uses = set()     # "UV", "TANGENT", "GENERATED": what the meshes must export
         self._memo = {}
+        self.offset = 0       # 1, 2 while compiling a Bump height at its offset points (COORD offsets)
 
     def warn(self, message):
         self.warnings.add(f"Candela: {self.owner}: {message}")
@@ -116,7 +117,7 @@ class NodeCompiler(ProceduralNodes):
 
     def output(self, out, ctx):
         node = out.node
-        key = (node.as_pointer(), out.identifier, tuple(g.as_pointer() for g in ctx))
+        key = (node.as_pointer(), out.identifier, tuple(g.as_pointer() for g in ctx), self.offset)
         if key not in self._memo:
             handler = getattr(self, "_" + node.bl_idname, None)
             if handler is None:
@@ -131,7 +132,27 @@ class NodeCompiler(ProceduralNodes):
             self.uses.add("UV")
         elif kind in ("GENERATED", "OBJECT") and not self.world:
             self.uses.add("GENERATED")
-        return self.program.op("COORD", i=(self.tables.enum("coord_kinds")[kind],))
+        moves = kind in ("UV", "GENERATED", "OBJECT", "POSITION")
+        return self.program.op("COORD", i=(self.tables.enum("coord_kinds")[kind], self.offset if moves else 0))
+
+    def at_offsets(self, compile_value):
+        """compile_value() at the shading point and at Bump's two offset points: three values."""
+        saved = self.offset
+        values = []
+        for offset in (0, 1, 2):
+            self.offset = offset
+            values.append(compile_value())
+        self.offset = saved
+        return values
+
+    def bump(self, heights, strength, distance, normal, invert=False):
+        """Cycles' Bump from heights at the point and its two offsets (BUMP); the normal itself if the height
+        does not vary."""
+        if all(is_const(h) for h in heights):
+            return normal
+        params = self.program.reg(self.pack(strength, distance))
+        normal = self.program.reg(normal)
+        return self.program.op("BUMP", *heights, i=(params.index, normal.index, int(invert)))
 
     # ---- textures -----------------------------------------------------------------------------------------------
 
