@@ -95,6 +95,7 @@ float perlin(float x, float y, float z, float w) {
 /// Large coordinates lose the fraction the noise is made of: keep them below 10⁵ (the shift by ½ from 10⁶ on
 /// avoids landing on lattice points, where the noise is 0).
 inline float reduce(float p) {
+    if (std::fabs(p) < 100000.f) return p;  // fmod would return p itself
     const float correction = std::fabs(p) >= 1000000.f ? 0.5f : 0.f;
     return std::fmod(p, 100000.f) + correction;
 }
