@@ -25,6 +25,7 @@ ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const
     in.position = hit.p - m_offset;
     in.true_normal = hit.ng;
     in.object_location = pl.object_to_world.translation() - m_offset;
+    in.object_index = float(pl.pass_index);
     Vec3 tangent;
     if (attr.tangent_at(prim.prim, hit.b1, hit.b2, &tangent, &in.tangent_sign)) {
         in.tangent = pl.object_to_world.vector(tangent);

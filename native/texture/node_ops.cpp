@@ -193,6 +193,19 @@ Vec3 ShaderLibrary::evaluate_node(const ShaderOp& op, const Vec3* regs, const Sh
             const float side = in.backfacing ? -1.f : 1.f;  // on the viewer's side for the check, then back
             return valid_reflection(in.true_normal * side, in.incoming, n * side) * side;
         }
+        case ShaderOpCode::Curves: {
+            // Cycles' RGB/Vector/Float Curves: the baked curves read at (v − min x)/range, extrapolated linearly
+            // past the ends, blended with the input by fac.
+            const float min_x = m_consts[op.i[1]], range = m_consts[op.i[1] + 1];
+            const float inv = range != 0.f ? 1.f / range : 0.f;
+            Vec3 out;
+            if (op.i[2] == 1) {
+                out = Vec3(curve(op.i[0], (b.x - min_x) * inv, 0));
+            } else {
+                for (int k = 0; k < 3; ++k) out[k] = curve(op.i[0], (b[k] - min_x) * inv, k);
+            }
+            return b * (1.f - a.x) + out * a.x;
+        }
         default: return Vec3(0.f);
     }
 }

@@ -113,6 +113,7 @@ Vec3 coord(const ShadingInputs& in, CoordKind kind, uint32_t offset) {
             return n * (2.f * dot(n, in.incoming)) - in.incoming;
         }
         case CoordKind::ObjectLocation: return in.object_location;
+        case CoordKind::ObjectIndex: return Vec3(in.object_index);
     }
     return Vec3(0.f);
 }
@@ -135,6 +136,22 @@ Vec3 ShaderLibrary::ramp(uint32_t index, float fac, bool interpolate, bool alpha
     Color c(a[0], a[1], a[2]);
     if (interpolate && t > 0.f) c = c * (1.f - t) + Color(a[4], a[5], a[6]) * t;
     return c;
+}
+
+float ShaderLibrary::curve(uint32_t index, float f, int c) const {
+    const float* table = m_ramps.data() + size_t(index) * k_ramp_size * 4;
+    const float last = float(k_ramp_size - 1);
+    if (!std::isfinite(f)) f = 0.f;
+    if (f < 0.f) return table[c] + (table[c] - table[4 + c]) * (-f) * last;
+    if (f > 1.f) {
+        const float* t0 = table + 4 * (k_ramp_size - 1);
+        return t0[c] + (t0[c] - t0[c - 4]) * (f - 1.f) * last;
+    }
+    const float x = f * last;
+    const uint32_t i = std::min(uint32_t(x), k_ramp_size - 1);
+    const float t = x - float(i);
+    const float v = table[4 * i + c];
+    return t > 0.f ? (1.f - t) * v + t * table[4 * (i + 1) + c] : v;
 }
 
 void ShaderLibrary::evaluate(uint32_t p, const ShadingInputs& in, Vec3* regs) const {

@@ -15,13 +15,13 @@ const std::vector<std::string>& shader_op_names() {
         "CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE", "AVERAGE",
         "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE", "TEX_WHITE_NOISE",
         "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER", "TEX_GRADIENT", "TEX_BRICK",
-        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP"};
+        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "CURVES"};
     return names;
 }
 const std::vector<std::string>& coord_kind_names() {
     static const std::vector<std::string> names = {"UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING",
                                                    "POSITION", "TRUE_NORMAL", "BACKFACING", "REFLECTION",
-                                                   "OBJECT_LOCATION"};
+                                                   "OBJECT_LOCATION", "OBJECT_INDEX"};
     return names;
 }
 const std::vector<std::string>& image_projection_names() {
@@ -122,6 +122,7 @@ int arity(ShaderOpCode code) {
         case ShaderOpCode::MapRange:
         case ShaderOpCode::HueSaturation:
         case ShaderOpCode::Bump: return 3;
+        case ShaderOpCode::Curves: return 2;
     }
     return 0;
 }
@@ -253,6 +254,11 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
                     break;
                 case ShaderOpCode::MapRange: need((op.i[3] & 0xFFu) < map_range_type_names().size(), "unknown map range type"); break;
                 case ShaderOpCode::LayerWeight: need(op.i[0] < 2, "unknown output"); break;
+                case ShaderOpCode::Curves:
+                    need(op.i[0] < ramp_count, "ramp " + std::to_string(op.i[0]) + " does not exist");
+                    need(size_t(op.i[1]) + 2 <= m_consts.size(), "constant offset out of range");
+                    need(op.i[2] < 2, "unknown curve mode");
+                    break;
                 default: break;
             }
         }

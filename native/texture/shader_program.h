@@ -61,6 +61,8 @@ enum class ShaderOpCode : uint32_t {
     Fresnel,         // a: normal, b: IOR
     Bump,            // a, b, c: height at the point and at its two offsets; i0: register (strength, distance, -),
                      // i1: register (normal), i2: invert
+    Curves,          // a: fac, b: value(s); i0: ramp (the curves baked over [min x, max x]), i1: offset of (min x,
+                     // x range) in shader_consts, i2: 0 per channel (RGB/Vector Curves), 1 one value (Float Curve)
 };
 /// Bit k set: immediate i_k of the operation is a register it reads (validated like a, b, c).
 uint32_t shader_op_register_immediates(ShaderOpCode code);
@@ -75,7 +77,8 @@ const std::vector<std::string>& shader_op_names();
 /// TRUE_NORMAL are on the winding side. The world: GENERATED, OBJECT, POSITION, REFLECTION and INCOMING are the
 /// view direction, the normals its opposite, UV and OBJECT_LOCATION 0.
 enum class CoordKind : uint32_t {
-    Uv, Generated, Object, Normal, WorldNormal, Incoming, Position, TrueNormal, Backfacing, Reflection, ObjectLocation
+    Uv, Generated, Object, Normal, WorldNormal, Incoming, Position, TrueNormal, Backfacing, Reflection, ObjectLocation,
+    ObjectIndex  // the object's pass index (Object Info > Object Index)
 };
 // Procedural-texture enumerations by their Blender identifiers.
 const std::vector<std::string>& musgrave_type_names();
@@ -119,6 +122,7 @@ struct ShadingInputs {
     Vec3 position{0.f};       // world position (Blender's origin, not camera-relative)
     Vec3 true_normal{0.f, 0.f, 1.f};  // geometric normal, winding side
     Vec3 object_location{0.f};        // the object's origin, world
+    float object_index = 0.f;         // its pass index
     // Bump's finite differences (set where the program has offset coordinates): two small world offsets in the
     // tangent plane and what they change in the position-derived coordinates.
     Vec3 dp[2], dobject[2], dgenerated[2], duv[2];
@@ -170,6 +174,8 @@ public:
 
 private:
     Vec3 ramp(uint32_t index, float fac, bool interpolate, bool alpha) const;
+    /// Channel c of ramp `index` at f with Cycles' linear extrapolation past [0, 1] (curve tables).
+    float curve(uint32_t index, float f, int c) const;
     /// The procedural textures and converter nodes (texture/node_ops.cpp).
     Vec3 evaluate_node(const ShaderOp& op, const Vec3* regs, const ShadingInputs& in) const;
 

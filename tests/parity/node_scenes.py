@@ -176,6 +176,40 @@ def layer_weight_of(nt, normal):
     return lw.outputs["Facing"]
 
 
+def curves(kind, source, socket, edit):
+    """A curves node fed by `source`, its curve mapping changed by edit(mapping)."""
+    def g(nt, coord):
+        c = node(nt, kind)
+        edit(c.mapping)
+        c.mapping.update()
+        nt.links.new(source(nt, coord), c.inputs[socket])
+        return c.outputs[0]
+    return g
+
+
+def _edit_rgb(mapping):
+    mapping.curves[3].points.new(0.4, 0.7)
+    mapping.curves[0].points.new(0.5, 0.2)
+    mapping.curves[2].points[1].location = (0.8, 0.9)   # the blue curve ends at x = 0.8: extrapolated past it
+
+
+def _edit_vector(mapping):
+    for k, c in enumerate(mapping.curves):
+        c.points.new(0.1 * k, 0.3 + 0.2 * k)
+
+
+def _edit_float(mapping):
+    mapping.curves[0].points.new(0.3, 0.8)
+    mapping.curves[0].points.new(0.7, 0.1)
+
+
+def object_index(nt, coord):
+    m = node(nt, "ShaderNodeMath", {"operation": "DIVIDE"})
+    m.inputs[1].default_value = 5.0
+    nt.links.new(node(nt, "ShaderNodeObjectInfo").outputs["Object Index"], m.inputs[0])
+    return m.outputs[0]
+
+
 def with_normal_input(kind, output, **inputs):
     def g(nt, coord):
         return node(nt, kind, **inputs).outputs[output]
@@ -268,6 +302,13 @@ NODE_SCENES = {
     "node_hue_saturation": ("PLANE", hue_saturation),
     # sin(20·x): its finite differences are secants over one pixel, so this checks Cycles' offsets and frame.
     "node_bump_sine": ("PLANE", bumped(lambda nt, c: _sinx(nt, c), distance=0.01)),
+    "node_rgb_curves": ("PLANE", curves("ShaderNodeRGBCurve", tex("ShaderNodeTexNoise", "Color", Scale=3.0), "Color",
+                                        _edit_rgb)),
+    "node_vector_curves": ("PLANE", curves("ShaderNodeVectorCurve", lambda nt, c: c.outputs["Generated"], "Vector",
+                                           _edit_vector)),
+    "node_float_curve": ("PLANE", curves("ShaderNodeFloatCurve", tex("ShaderNodeTexNoise", Scale=2.0), "Value",
+                                         _edit_float)),
+    "node_object_info_index": ("PLANE", object_index),
     "node_bump_noise": ("PLANE", bumped(tex("ShaderNodeTexNoise", Scale=3.0, Detail=1.0), distance=0.2)),
     "node_bump_image_uv": ("PLANE", bumped(image_uv, strength=0.8, distance=0.05)),
     "node_bump_object_invert": ("PLANE", bumped(tex("ShaderNodeTexWave", vector="Object", Scale=1.0), distance=0.02,
@@ -342,5 +383,6 @@ def build_node_scene(name, scene, size=128, out_dir="."):
         ob.matrix_world = Matrix.LocRotScale(Vector((0.0, 0.0, 0.0)), Euler((0.3, 0.0, 0.5)), Vector((1.0, 1.0, 1.0)))
         _camera(scene, (0.0, -4.5, 0.6), (82.0, 0.0, 0.0), lens=60.0)
     me.materials.append(mat)
+    ob.pass_index = 3
     scene.collection.objects.link(ob)
     return 1.0

@@ -50,6 +50,7 @@ class _Reader:
         self.material, self.warnings = material, warnings
         self.owner = f"material '{material.name}'"
         self.nodes = NodeCompiler(tables, self.owner, warnings)
+        self.nodes.material_index = getattr(material, "pass_index", 0)
         self.program = self.nodes.program
         self.closures, self.emission = [], (0.0, 0.0, 0.0)
         self.holdout = (0.0, 0.0, 0.0)   # Holdout closure weight, a constant or a register (Cycles: alpha loses it)

@@ -175,3 +175,45 @@ class ProceduralNodes:
         normal = self.normal_input(node, ctx)
         result = self.bump(self.at_offsets(height), 1.0, 1.0, normal)
         return None if result is normal else result
+
+    # ---- curves -------------------------------------------------------------------------------------------------
+
+    def _curves(self, node, fac, value, rgb):
+        """Cycles bakes the curves over the widest x range of their points (RAMP_SIZE samples); RGB Curves apply the
+        combined curve (C) before each channel's, as Blender's curve mapping does."""
+        from .. import schema
+        mapping = node.mapping
+        mapping.initialize()
+        curves = list(mapping.curves)
+        used = curves[:4] if rgb else curves[:3]
+        min_x = min(c.points[0].location[0] for c in used)
+        max_x = max(c.points[-1].location[0] for c in used)
+        n = schema.RAMP_SIZE
+        rows = []
+        for i in range(n):
+            t = min_x + i / (n - 1) * (max_x - min_x)
+            if rgb:
+                t = mapping.evaluate(curves[3], t)
+            rows.append([mapping.evaluate(curves[k], t) for k in range(3)])
+        index = self.tables.curve_table(rows)
+        offset = self.tables.add_consts([min_x, max_x - min_x])
+        return self.program.op("CURVES", fac, value, i=(index, offset, 0))
+
+    def _ShaderNodeRGBCurve(self, node, out, ctx):
+        return self._curves(node, self.scalar(node, "Fac", ctx), self.input(node.inputs["Color"], ctx), True)
+
+    def _ShaderNodeVectorCurve(self, node, out, ctx):
+        return self._curves(node, self.scalar(node, "Fac", ctx), self.input(node.inputs["Vector"], ctx), False)
+
+    def _ShaderNodeFloatCurve(self, node, out, ctx):
+        from .. import schema
+        mapping = node.mapping
+        mapping.initialize()
+        curve = mapping.curves[0]
+        min_x, max_x = curve.points[0].location[0], curve.points[-1].location[0]
+        n = schema.RAMP_SIZE
+        rows = [[mapping.evaluate(curve, min_x + i / (n - 1) * (max_x - min_x))] * 3 for i in range(n)]
+        index = self.tables.curve_table(rows)
+        offset = self.tables.add_consts([min_x, max_x - min_x])
+        return self.program.op("CURVES", self.scalar(node, "Factor", ctx), self.scalar(node, "Value", ctx),
+                               i=(index, offset, 1))

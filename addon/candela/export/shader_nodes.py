@@ -81,6 +81,7 @@ class NodeCompiler(ProceduralNodes):
         self.uses = set()     # "UV", "TANGENT", "GENERATED": what the meshes must export
         self._memo = {}
         self.offset = 0       # 1, 2 while compiling a Bump height at its offset points (COORD offsets)
+        self.material_index = 0   # the material's pass index (Object Info > Material Index)
 
     def warn(self, message):
         self.warnings.add(f"Candela: {self.owner}: {message}")
@@ -213,10 +214,15 @@ class NodeCompiler(ProceduralNodes):
         return self.coord(kind)
 
     def _ShaderNodeObjectInfo(self, node, out, ctx):
-        if out.identifier != "Location":
+        if self.world:
+            return (0.0, 0.0, 0.0)
+        if out.identifier == "Material Index":
+            return (float(self.material_index),) * 3
+        kind = {"Location": "OBJECT_LOCATION", "Object Index": "OBJECT_INDEX"}.get(out.identifier)
+        if kind is None:
             self.unsupported(node, f"output '{out.name}' is not supported yet")
             return None
-        return self.coord("OBJECT_LOCATION") if not self.world else (0.0, 0.0, 0.0)
+        return self.coord(kind)
 
     def camera(self):
         import bpy

@@ -214,6 +214,13 @@ class ShaderTables:
         self.ramps.append(table)
         return len(self.ramps) - 1
 
+    def curve_table(self, rows):
+        """Index of a table of RAMP_SIZE given (r, g, b) rows (RGB/Vector/Float Curves baked over their x range)."""
+        table = np.ones((schema.RAMP_SIZE, 4), np.float32)
+        table[:, :3] = np.asarray(rows, np.float32).reshape(schema.RAMP_SIZE, 3)
+        self.ramps.append(table)
+        return len(self.ramps) - 1
+
     # ---- arrays -------------------------------------------------------------------------------------------------
 
     def arrays(self):
