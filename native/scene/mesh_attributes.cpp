@@ -1,5 +1,7 @@
 #include "scene/mesh_attributes.h"
 
+#include <algorithm>
+
 #include "input/scene_arrays.h"
 
 namespace candela {
@@ -49,6 +51,12 @@ MeshAttributes MeshAttributes::load(const SceneArrays& arrays, uint32_t mesh, ui
     if (const Array* t = arrays.find("tangents")) {
         const float* p = t->data<float>() + 12 * size_t(tri_begin);
         a.tangent.assign(p, p + 12 * n);
+    }
+    if (const Array* at = arrays.find("corner_attributes")) {
+        // (T, 3, 4·S): S slots of RGBA (or xyz + 1) per corner.
+        a.attribute_slots = uint32_t(at->count() / (12 * std::max<size_t>(at->shape[0], 1)));
+        const float* p = at->data<float>() + 12 * size_t(a.attribute_slots) * tri_begin;
+        a.attributes.assign(p, p + 12 * size_t(a.attribute_slots) * n);
     }
     if (const Array* ts = arrays.find("mesh_texspace")) {
         const float* p = ts->data<float>() + 6 * size_t(mesh);

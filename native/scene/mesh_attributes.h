@@ -18,6 +18,13 @@ struct MeshAttributes {
     // Per triangle with UVs, the gradients of u and of v over the triangle's plane (object space): Bump's finite
     // differences move the UV by (∇u·d, ∇v·d) for an object-space offset d.
     std::vector<Vec3> uv_gradient;
+    // Mesh attributes the shader programs read (`corner_attributes`): per corner, 4 floats per slot.
+    std::vector<float> attributes;
+    uint32_t attribute_slots = 0;
+    /// The corner values of triangle t (3 corners × 4·attribute_slots floats), or null.
+    const float* attribute_corners(uint32_t t) const {
+        return attributes.empty() ? nullptr : attributes.data() + 12 * size_t(attribute_slots) * t;
+    }
     Vec3 texspace_location{0.f}, texspace_size{1.f};
 
     /// Rows [tri_begin, tri_end) of `uvs`, `tangents` and row `mesh` of `mesh_texspace`, where given.

@@ -26,6 +26,10 @@ ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const
     in.true_normal = hit.ng;
     in.object_location = pl.object_to_world.translation() - m_offset;
     in.object_index = float(pl.pass_index);
+    in.attributes = attr.attribute_corners(prim.prim);
+    in.attribute_slots = attr.attribute_slots;
+    in.b1 = hit.b1;
+    in.b2 = hit.b2;
     Vec3 tangent;
     if (attr.tangent_at(prim.prim, hit.b1, hit.b2, &tangent, &in.tangent_sign)) {
         in.tangent = pl.object_to_world.vector(tangent);

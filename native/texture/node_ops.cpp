@@ -193,6 +193,18 @@ Vec3 ShaderLibrary::evaluate_node(const ShaderOp& op, const Vec3* regs, const Sh
             const float side = in.backfacing ? -1.f : 1.f;  // on the viewer's side for the check, then back
             return valid_reflection(in.true_normal * side, in.incoming, n * side) * side;
         }
+        case ShaderOpCode::Attribute: {
+            // A slot the mesh does not have reads 0 (and alpha 0), as Cycles reads a missing attribute.
+            if (!in.attributes || op.i[0] >= in.attribute_slots) return Vec3(0.f);
+            const size_t stride = 4 * size_t(in.attribute_slots);
+            const float* c0 = in.attributes + 4 * size_t(op.i[0]);
+            const float w0 = 1.f - in.b1 - in.b2;
+            float v[4];
+            for (int k = 0; k < 4; ++k) v[k] = w0 * c0[k] + in.b1 * c0[stride + k] + in.b2 * c0[2 * stride + k];
+            if (op.i[1] == 1) return Vec3((v[0] + v[1] + v[2]) * (1.f / 3.f));
+            if (op.i[1] == 2) return Vec3(v[3]);
+            return Vec3(v[0], v[1], v[2]);
+        }
         case ShaderOpCode::Curves: {
             // Cycles' RGB/Vector/Float Curves: the baked curves read at (v − min x)/range, extrapolated linearly
             // past the ends, blended with the input by fac.

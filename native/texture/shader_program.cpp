@@ -15,7 +15,7 @@ const std::vector<std::string>& shader_op_names() {
         "CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE", "AVERAGE",
         "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE", "TEX_WHITE_NOISE",
         "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER", "TEX_GRADIENT", "TEX_BRICK",
-        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "CURVES"};
+        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "ATTRIBUTE", "CURVES"};
     return names;
 }
 const std::vector<std::string>& coord_kind_names() {
@@ -92,7 +92,8 @@ namespace {
 int arity(ShaderOpCode code) {
     switch (code) {
         case ShaderOpCode::Const:
-        case ShaderOpCode::Coord: return 0;
+        case ShaderOpCode::Coord:
+        case ShaderOpCode::Attribute: return 0;
         case ShaderOpCode::Image:
         case ShaderOpCode::ImageAlpha:
         case ShaderOpCode::Ramp:
@@ -184,7 +185,7 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
             // Nodes that read the shading point themselves (the normal, the view direction) vary with it.
             bool varying = op.code == ShaderOpCode::Coord || op.code == ShaderOpCode::NormalMap ||
                            op.code == ShaderOpCode::LayerWeight || op.code == ShaderOpCode::Fresnel ||
-                           op.code == ShaderOpCode::Bump;
+                           op.code == ShaderOpCode::Bump || op.code == ShaderOpCode::Attribute;
             std::vector<uint32_t> reads(args, args + n);
             const uint32_t imm_regs = shader_op_register_immediates(op.code);
             for (int j = 0; j < 4; ++j)
@@ -254,6 +255,7 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
                     break;
                 case ShaderOpCode::MapRange: need((op.i[3] & 0xFFu) < map_range_type_names().size(), "unknown map range type"); break;
                 case ShaderOpCode::LayerWeight: need(op.i[0] < 2, "unknown output"); break;
+                case ShaderOpCode::Attribute: need(op.i[1] < 3, "unknown output"); break;
                 case ShaderOpCode::Curves:
                     need(op.i[0] < ramp_count, "ramp " + std::to_string(op.i[0]) + " does not exist");
                     need(size_t(op.i[1]) + 2 <= m_consts.size(), "constant offset out of range");

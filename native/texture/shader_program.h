@@ -61,6 +61,7 @@ enum class ShaderOpCode : uint32_t {
     Fresnel,         // a: normal, b: IOR
     Bump,            // a, b, c: height at the point and at its two offsets; i0: register (strength, distance, -),
                      // i1: register (normal), i2: invert
+    Attribute,       // i0: attribute slot (`corner_attributes`), i1: 0 colour/vector, 1 fac (mean of x, y, z), 2 alpha
     Curves,          // a: fac, b: value(s); i0: ramp (the curves baked over [min x, max x]), i1: offset of (min x,
                      // x range) in shader_consts, i2: 0 per channel (RGB/Vector Curves), 1 one value (Float Curve)
 };
@@ -123,6 +124,11 @@ struct ShadingInputs {
     Vec3 true_normal{0.f, 0.f, 1.f};  // geometric normal, winding side
     Vec3 object_location{0.f};        // the object's origin, world
     float object_index = 0.f;         // its pass index
+    // Mesh attributes (Attribute, Color Attribute, UV Map with a named map): the hit triangle's corner values, 4
+    // floats per slot, and its barycentrics. Null: the mesh has none (the attributes read 0).
+    const float* attributes = nullptr;
+    uint32_t attribute_slots = 0;
+    float b1 = 0.f, b2 = 0.f;
     // Bump's finite differences (set where the program has offset coordinates): two small world offsets in the
     // tangent plane and what they change in the position-derived coordinates.
     Vec3 dp[2], dobject[2], dgenerated[2], duv[2];

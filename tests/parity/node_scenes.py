@@ -302,6 +302,14 @@ NODE_SCENES = {
     "node_hue_saturation": ("PLANE", hue_saturation),
     # sin(20·x): its finite differences are secants over one pixel, so this checks Cycles' offsets and frame.
     "node_bump_sine": ("PLANE", bumped(lambda nt, c: _sinx(nt, c), distance=0.01)),
+    "node_attribute_color": ("PLANE", lambda nt, c: node(nt, "ShaderNodeAttribute",
+                                                         {"attribute_name": "Col"}).outputs["Color"]),
+    "node_attribute_float": ("PLANE", lambda nt, c: node(nt, "ShaderNodeAttribute",
+                                                         {"attribute_name": "weight"}).outputs["Fac"]),
+    "node_attribute_alpha": ("PLANE", lambda nt, c: node(nt, "ShaderNodeAttribute",
+                                                         {"attribute_name": "Col"}).outputs["Alpha"]),
+    "node_color_attribute_default": ("PLANE", lambda nt, c: node(nt, "ShaderNodeVertexColor").outputs["Color"]),
+    "node_uv_map_named": ("PLANE", lambda nt, c: node(nt, "ShaderNodeUVMap", {"uv_map": "Second"}).outputs["UV"]),
     "node_rgb_curves": ("PLANE", curves("ShaderNodeRGBCurve", tex("ShaderNodeTexNoise", "Color", Scale=3.0), "Color",
                                         _edit_rgb)),
     "node_vector_curves": ("PLANE", curves("ShaderNodeVectorCurve", lambda nt, c: c.outputs["Generated"], "Vector",
@@ -327,7 +335,33 @@ def _grid(name, size=2.0, cuts=8):
     me = bpy.data.meshes.new(name)
     bm.to_mesh(me)
     bm.free()
+    _add_attributes(me)
     return me
+
+
+def _add_attributes(me):
+    """Mesh attributes for the Attribute, Color Attribute and UV Map scenes: "Col" (float colours per corner),
+    "Bytes" (8-bit colours per vertex, the default colour attribute), "weight" (a float per vertex), "Second" (a
+    second UV map, rotated and scaled)."""
+    import numpy as np
+    rng = np.random.default_rng(5)
+    nl, nv = len(me.loops), len(me.vertices)
+    col = me.color_attributes.new("Col", "FLOAT_COLOR", "CORNER")
+    col.data.foreach_set("color", rng.uniform(0.05, 1.0, (nl, 4)).astype(np.float32).ravel())
+    byte = me.color_attributes.new("Bytes", "BYTE_COLOR", "POINT")
+    byte.data.foreach_set("color", rng.uniform(0.05, 1.0, (nv, 4)).astype(np.float32).ravel())
+    me.color_attributes.render_color_index = me.color_attributes.find("Bytes")
+    weight = me.attributes.new("weight", "FLOAT", "POINT")
+    co = np.empty(3 * nv, np.float32)
+    me.vertices.foreach_get("co", co)
+    co = co.reshape(nv, 3)
+    weight.data.foreach_set("value", (0.5 + 0.4 * np.sin(3.0 * co[:, 0]) * np.cos(2.0 * co[:, 1])).astype(np.float32))
+    second = me.uv_layers.new(name="Second")
+    uv = np.empty(2 * nl, np.float32)
+    me.uv_layers["UVMap"].data.foreach_get("uv", uv)
+    uv = uv.reshape(nl, 2)
+    second.data.foreach_set("uv", np.stack([0.8 * uv[:, 1] + 0.1, 1.5 * uv[:, 0]], 1).astype(np.float32).ravel())
+    me.uv_layers["UVMap"].active_render = True
 
 
 def _camera(scene, location, rotation_deg, ortho_scale=None, lens=50.0):

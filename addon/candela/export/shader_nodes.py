@@ -23,6 +23,7 @@ from .shader_tables import MISSING_COLOR, Program, Reg, const3, is_const
 
 _INTERPOLATION = {"Closest": "CLOSEST", "Linear": "LINEAR", "Cubic": "CUBIC", "Smart": "CUBIC"}
 _PASS_THROUGH = {"NodeReroute"}
+RENDER_COLOR = "\x00render color"   # the Color Attribute node without a name: the mesh's default colour attribute
 
 
 def _socket_default(socket):
@@ -234,10 +235,27 @@ class NodeCompiler(ProceduralNodes):
         return self.program.op("MAPPING", vector, i=(self.tables.add_consts(rows), 0))
 
     def _ShaderNodeUVMap(self, node, out, ctx):
-        if node.uv_map:
-            self.warn(f"UV Map node '{node.name}' names the UV map '{node.uv_map}'; Candela uses the mesh's render UV "
-                      "map")
+        if node.uv_map and not self.world:
+            return self.attribute(node.uv_map, "Vector")
         return self.coord("UV")
+
+    def attribute(self, name, output):
+        """A mesh attribute (a colour attribute, a UV map, a float or vector attribute) by name, exported per corner
+        for the meshes whose materials read it; RENDER_COLOR is the mesh's default colour attribute."""
+        if self.world:
+            return (0.0, 0.0, 0.0)
+        self.uses.add(("ATTRIBUTE", name))
+        which = {"Fac": 1, "Alpha": 2}.get(output, 0)
+        return self.program.op("ATTRIBUTE", i=(self.tables.attribute_slot(name), which))
+
+    def _ShaderNodeAttribute(self, node, out, ctx):
+        if node.attribute_type != "GEOMETRY":
+            self.unsupported(node, f"reads a {node.attribute_type.lower()} attribute, which is not supported yet")
+            return None
+        return self.attribute(node.attribute_name, out.identifier)
+
+    def _ShaderNodeVertexColor(self, node, out, ctx):
+        return self.attribute(node.layer_name or RENDER_COLOR, out.identifier)
 
     def _ShaderNodeMapping(self, node, out, ctx):
         for name in ("Location", "Rotation", "Scale"):
