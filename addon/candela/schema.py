@@ -28,7 +28,7 @@ SHADER_ENUMS = {
                    "AVERAGE", "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE",
                    "TEX_WHITE_NOISE", "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER",
                    "TEX_GRADIENT", "TEX_BRICK", "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT",
-                   "FRESNEL", "BUMP", "ATTRIBUTE", "CURVES"),
+                   "FRESNEL", "BUMP", "ATTRIBUTE", "SKY", "CURVES"),
     "coord_kinds": ("UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING", "POSITION", "TRUE_NORMAL",
                     "BACKFACING", "REFLECTION", "OBJECT_LOCATION", "OBJECT_INDEX"),
     "math_ops": ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER", "LOGARITHM", "SQRT",
@@ -57,6 +57,7 @@ SHADER_ENUMS = {
                         "MINIMUM", "MAXIMUM", "FLOOR", "CEIL", "FRACTION", "MODULO", "WRAP", "SNAP", "SINE", "COSINE",
                         "TANGENT"),
     "map_range_types": ("LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"),
+    "sky_models": ("PREETHAM",),
 }
 RAMP_SIZE = 256   # entries per ColorRamp table
 

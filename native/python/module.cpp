@@ -142,6 +142,7 @@ py::dict capabilities() {
     d["gradient_types"] = enum_dict(gradient_type_names());
     d["vector_math_ops"] = enum_dict(vector_math_op_names());
     d["map_range_types"] = enum_dict(map_range_type_names());
+    d["sky_models"] = enum_dict(sky_model_names());
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "input/scene_arrays.h"
 #include "texture/node_math.h"
+#include "texture/sky.h"
 
 namespace candela {
 
@@ -15,7 +16,7 @@ const std::vector<std::string>& shader_op_names() {
         "CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE", "AVERAGE",
         "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE", "TEX_WHITE_NOISE",
         "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER", "TEX_GRADIENT", "TEX_BRICK",
-        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "ATTRIBUTE", "CURVES"};
+        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "ATTRIBUTE", "SKY", "CURVES"};
     return names;
 }
 const std::vector<std::string>& coord_kind_names() {
@@ -75,6 +76,11 @@ const std::vector<std::string>& map_range_type_names() {
     return names;
 }
 
+const std::vector<std::string>& sky_model_names() {
+    static const std::vector<std::string> names = {"PREETHAM"};
+    return names;
+}
+
 uint32_t shader_op_register_immediates(ShaderOpCode code) {
     switch (code) {
         case ShaderOpCode::TexMusgrave:
@@ -104,7 +110,8 @@ int arity(ShaderOpCode code) {
         case ShaderOpCode::Mapping: return 1;
         case ShaderOpCode::NormalMap:
         case ShaderOpCode::Invert: return 2;
-        case ShaderOpCode::TexGradient: return 1;
+        case ShaderOpCode::TexGradient:
+        case ShaderOpCode::Sky: return 1;
         case ShaderOpCode::TexWhiteNoise:
         case ShaderOpCode::TexMagic:
         case ShaderOpCode::LayerWeight:
@@ -256,6 +263,10 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
                 case ShaderOpCode::MapRange: need((op.i[3] & 0xFFu) < map_range_type_names().size(), "unknown map range type"); break;
                 case ShaderOpCode::LayerWeight: need(op.i[0] < 2, "unknown output"); break;
                 case ShaderOpCode::Attribute: need(op.i[1] < 3, "unknown output"); break;
+                case ShaderOpCode::Sky:
+                    need(op.i[1] < sky_model_names().size(), "unknown sky model");
+                    need(size_t(op.i[0]) + sky_state_size(SkyModel(op.i[1])) <= m_consts.size(), "sky state out of range");
+                    break;
                 case ShaderOpCode::Curves:
                     need(op.i[0] < ramp_count, "ramp " + std::to_string(op.i[0]) + " does not exist");
                     need(size_t(op.i[1]) + 2 <= m_consts.size(), "constant offset out of range");

@@ -62,6 +62,7 @@ enum class ShaderOpCode : uint32_t {
     Bump,            // a, b, c: height at the point and at its two offsets; i0: register (strength, distance, -),
                      // i1: register (normal), i2: invert
     Attribute,       // i0: attribute slot (`corner_attributes`), i1: 0 colour/vector, 1 fac (mean of x, y, z), 2 alpha
+    Sky,             // a: direction; i0: offset of the model's precomputed state in shader_consts, i1: sky_models
     Curves,          // a: fac, b: value(s); i0: ramp (the curves baked over [min x, max x]), i1: offset of (min x,
                      // x range) in shader_consts, i2: 0 per channel (RGB/Vector Curves), 1 one value (Float Curve)
 };
@@ -90,6 +91,7 @@ const std::vector<std::string>& wave_profile_names();
 const std::vector<std::string>& gradient_type_names();
 const std::vector<std::string>& vector_math_op_names();
 const std::vector<std::string>& map_range_type_names();
+const std::vector<std::string>& sky_model_names();
 const std::vector<std::string>& coord_kind_names();
 
 enum class ImageProjection : uint32_t { Flat, Equirectangular, MirrorBall };

@@ -216,6 +216,13 @@ def with_normal_input(kind, output, **inputs):
     return g
 
 
+def sky(sky_type, **props):
+    """A world graph: the Sky Texture of `sky_type` (node properties `props`)."""
+    def g(nt, coord):
+        return node(nt, "ShaderNodeTexSky", {"sky_type": sky_type, **props}).outputs["Color"]
+    return g
+
+
 # name → (geometry, graph)
 NODE_SCENES = {
     "node_noise_3d": ("PLANE", tex("ShaderNodeTexNoise", Scale=4.0, Detail=3.0, Roughness=0.6, Distortion=0.5)),
@@ -310,6 +317,8 @@ NODE_SCENES = {
                                                          {"attribute_name": "Col"}).outputs["Alpha"]),
     "node_color_attribute_default": ("PLANE", lambda nt, c: node(nt, "ShaderNodeVertexColor").outputs["Color"]),
     "node_uv_map_named": ("PLANE", lambda nt, c: node(nt, "ShaderNodeUVMap", {"uv_map": "Second"}).outputs["UV"]),
+    "world_sky_preetham": ("SKY", sky("PREETHAM", turbidity=2.5, sun_direction=(0.3, -0.6, 0.45))),
+    "world_sky_preetham_lit": ("SKY_LIT", sky("PREETHAM", turbidity=4.0, sun_direction=(-0.5, -0.5, 0.5))),
     "node_rgb_curves": ("PLANE", curves("ShaderNodeRGBCurve", tex("ShaderNodeTexNoise", "Color", Scale=3.0), "Color",
                                         _edit_rgb)),
     "node_vector_curves": ("PLANE", curves("ShaderNodeVectorCurve", lambda nt, c: c.outputs["Generated"], "Vector",
@@ -391,9 +400,38 @@ def _emission_material(name, graph):
     return mat
 
 
+def _sky_world(scene, graph):
+    w = bpy.data.worlds.new("Sky")
+    w.use_nodes = True
+    nt = w.node_tree
+    nt.nodes.clear()
+    bg = nt.nodes.new("ShaderNodeBackground")
+    nt.links.new(graph(nt, None), bg.inputs["Color"])
+    nt.links.new(bg.outputs[0], nt.nodes.new("ShaderNodeOutputWorld").inputs["Surface"])
+    scene.world = w
+
+
 def build_node_scene(name, scene, size=128, out_dir="."):
     geometry, graph = NODE_SCENES[name]
     scene.world = None
+    if geometry in ("SKY", "SKY_LIT"):
+        # The world alone, seen by a wide camera looking 30° above the horizon toward −Y (the Sky Texture's
+        # azimuth 0 is +Y); SKY_LIT adds a white diffuse ground that the sky lights (the importance-sampled world).
+        _sky_world(scene, graph)
+        _camera(scene, (0.0, 0.0, 1.0), (100.0 if geometry == "SKY" else 75.0, 0.0, 180.0), lens=14.0)
+        if geometry == "SKY_LIT":
+            me = _grid(name, size=40.0, cuts=1)
+            mat = bpy.data.materials.new(name)
+            mat.use_nodes = True
+            mat.node_tree.nodes["Principled BSDF"].inputs["Roughness"].default_value = 1.0
+            mat.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = 0.0
+            me.materials.append(mat)
+            scene.collection.objects.link(bpy.data.objects.new(name, me))
+        else:   # Candela renders nothing without triangles: a small plane behind the camera
+            ob = bpy.data.objects.new(name, _grid(name, size=0.1, cuts=1))
+            ob.location = (0.0, 10.0, 1.0)
+            scene.collection.objects.link(ob)
+        return 1.0
     # Another object's space for Texture Coordinate > Object with an object.
     frame = bpy.data.objects.new("Frame", None)
     frame.matrix_world = Matrix.LocRotScale(Vector((0.3, -0.1, 0.2)), Euler((0.2, 0.1, 0.7)), Vector((0.5, 0.7, 0.6)))

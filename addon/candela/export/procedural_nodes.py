@@ -217,3 +217,15 @@ class ProceduralNodes:
         offset = self.tables.add_consts([min_x, max_x - min_x])
         return self.program.op("CURVES", self.scalar(node, "Factor", ctx), self.scalar(node, "Value", ctx),
                                i=(index, offset, 1))
+
+    # ---- sky ----------------------------------------------------------------------------------------------------
+
+    def _ShaderNodeTexSky(self, node, out, ctx):
+        from . import sky
+        if node.sky_type != "PREETHAM":
+            self.unsupported(node, f"sky type {node.sky_type} is not supported yet")
+            return None
+        socket = node.inputs["Vector"]
+        vector = self.input(socket, ctx) if socket.is_linked else self.coord("GENERATED")
+        offset = self.tables.add_consts(sky.preetham_state(tuple(node.sun_direction), node.turbidity))
+        return self.program.op("SKY", vector, i=(offset, self.tables.enum("sky_models")["PREETHAM"]))
