@@ -57,7 +57,7 @@ SHADER_ENUMS = {
                         "MINIMUM", "MAXIMUM", "FLOOR", "CEIL", "FRACTION", "MODULO", "WRAP", "SNAP", "SINE", "COSINE",
                         "TANGENT"),
     "map_range_types": ("LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"),
-    "sky_models": ("PREETHAM",),
+    "sky_models": ("PREETHAM", "NISHITA"),
 }
 RAMP_SIZE = 256   # entries per ColorRamp table
 

@@ -206,7 +206,9 @@ Vec3 ShaderLibrary::evaluate_node(const ShaderOp& op, const Vec3* regs, const Sh
             if (op.i[1] == 2) return Vec3(v[3]);
             return Vec3(v[0], v[1], v[2]);
         }
-        case ShaderOpCode::Sky: return sky_radiance(SkyModel(op.i[1]), &m_consts[op.i[0]], a);
+        case ShaderOpCode::Sky:
+            if (SkyModel(op.i[1]) == SkyModel::Nishita) return m_skies[size_t(m_sky_of_op[size_t(&op - m_ops.data())])].radiance(a);
+            return sky_radiance(SkyModel(op.i[1]), &m_consts[op.i[0]], a);
         case ShaderOpCode::Curves: {
             // Cycles' RGB/Vector/Float Curves: the baked curves read at (v − min x)/range, extrapolated linearly
             // past the ends, blended with the input by fac.

@@ -5,9 +5,11 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/math.h"
 #include "input/scene_arrays.h"
 #include "texture/node_math.h"
 #include "texture/sky.h"
+#include "texture/sky_nishita.h"
 
 namespace candela {
 
@@ -77,7 +79,7 @@ const std::vector<std::string>& map_range_type_names() {
 }
 
 const std::vector<std::string>& sky_model_names() {
-    static const std::vector<std::string> names = {"PREETHAM"};
+    static const std::vector<std::string> names = {"PREETHAM", "NISHITA"};
     return names;
 }
 
@@ -266,6 +268,22 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
                 case ShaderOpCode::Sky:
                     need(op.i[1] < sky_model_names().size(), "unknown sky model");
                     need(size_t(op.i[0]) + sky_state_size(SkyModel(op.i[1])) <= m_consts.size(), "sky state out of range");
+                    if (SkyModel(op.i[1]) == SkyModel::Nishita) {
+                        const float* c = &m_consts[op.i[0]];
+                        NishitaParams np;
+                        np.sun_elevation = c[0];
+                        np.sun_rotation = c[1];
+                        np.altitude = clamp(c[2], 0.f, 59999.f);
+                        np.air = std::fmax(c[3], 0.f);
+                        np.dust = std::fmax(c[4], 0.f);
+                        np.ozone = std::fmax(c[5], 0.f);
+                        np.sun_disc = c[6] != 0.f;
+                        np.sun_size = clamp(c[7], 0.f, k_pi);
+                        np.sun_intensity = std::fmax(c[8], 0.f);
+                        m_sky_of_op.resize(m_ops.size(), -1);
+                        m_sky_of_op[k] = int32_t(m_skies.size());
+                        m_skies.emplace_back(np);
+                    }
                     break;
                 case ShaderOpCode::Curves:
                     need(op.i[0] < ramp_count, "ramp " + std::to_string(op.i[0]) + " does not exist");
@@ -276,6 +294,25 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
             }
         }
     }
+}
+
+bool ShaderLibrary::sun_disc(uint32_t p, Vec3* direction, float* half_angle) const {
+    if (m_sky_of_op.empty()) return false;
+    for (uint32_t k = m_program_start[p]; k < m_program_start[p + 1]; ++k) {
+        if (m_sky_of_op[k] < 0) continue;
+        // Only a sky that reads the view direction as it is has its sun where NishitaSky says.
+        const ShaderOp& v = m_ops[m_program_start[p] + m_ops[k].a];
+        if (v.code != ShaderOpCode::Coord || v.i[1] != 0 ||
+            !(CoordKind(v.i[0]) == CoordKind::Generated || CoordKind(v.i[0]) == CoordKind::Incoming ||
+              CoordKind(v.i[0]) == CoordKind::Object))
+            continue;
+        const NishitaSky& sky = m_skies[size_t(m_sky_of_op[k])];
+        if (!(sky.sun_half_angle() > 0.f)) continue;
+        *direction = sky.sun_direction();
+        *half_angle = sky.sun_half_angle();
+        return true;
+    }
+    return false;
 }
 
 std::shared_ptr<const ShaderLibrary> ShaderLibrary::load(const SceneArrays& arrays) {

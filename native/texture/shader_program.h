@@ -14,6 +14,7 @@
 #include "core/transform.h"
 #include "core/vec.h"
 #include "texture/image_texture.h"
+#include "texture/sky_nishita.h"
 
 namespace candela {
 
@@ -177,6 +178,10 @@ public:
     const std::vector<ImageTexture>& textures() const { return m_textures; }
     const ShaderOp& op(uint32_t p, uint32_t r) const { return m_ops[m_program_start[p] + r]; }
 
+    /// The sun disc of a Nishita Sky Texture in program p that reads the plain view direction: its direction and
+    /// angular radius (environment lights sample it as a strategy of its own). False if there is none.
+    bool sun_disc(uint32_t p, Vec3* direction, float* half_angle) const;
+
     /// Largest program size (the register file callers allocate).
     uint32_t max_program_size() const { return m_max_size; }
 
@@ -195,6 +200,8 @@ private:
     std::vector<uint32_t> m_program_start;
     std::vector<uint8_t> m_varying;
     std::vector<uint8_t> m_differentials;  // per program
+    std::vector<NishitaSky> m_skies;       // the Nishita skies, tabulated at load
+    std::vector<int32_t> m_sky_of_op;      // per operation: index in m_skies, or −1 (empty without skies)
     uint32_t m_max_size = 0;
 };
 

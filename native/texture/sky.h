@@ -16,12 +16,14 @@
 
 namespace candela {
 
-enum class SkyModel : uint32_t { Preetham };
+enum class SkyModel : uint32_t { Preetham, Nishita };
 
 /// Floats of precomputed state per model.
 size_t sky_state_size(SkyModel model);
 
-/// Radiance of the sky toward direction d (from the scene to the sky; need not be unit).
+/// Radiance of the Preetham sky toward direction d (from the scene to the sky; need not be unit). NISHITA's state
+/// is its node's parameters (NishitaParams order: sun elevation, rotation, altitude, air, dust, ozone, disc, size,
+/// intensity), tabulated at load (texture/sky_nishita.h).
 Vec3 sky_radiance(SkyModel model, const float* state, const Vec3& d);
 
 /// CIE XYZ → linear Rec.709 (D65), the matrix Blender's colour management uses for XYZ.

@@ -333,6 +333,18 @@ NODE_SCENES = {
     "node_bump_sphere": ("SPHERE", bumped(tex("ShaderNodeTexNoise", vector="Object", Scale=2.0, Detail=2.0),
                                           distance=0.3, then=layer_weight_of)),
 }
+# Not in the suite until they match: the Nishita sky from published spectral tables, not Cycles' own, measured at
+# 1.26 (sky, 48 px), 0.98 with 13–64 % off per block (sun disc in view) and 1.054 (a ground lit by sky and sun)
+# times Cycles' brightness. Run them with `parity.py --nodes --scenes world_sky_nishita,…`.
+NODE_EXTRA_SCENES = {
+    "world_sky_nishita": ("SKY", sky("NISHITA", sun_elevation=math.radians(15.0), sun_rotation=math.radians(200.0),
+                                     sun_disc=False)),
+    "world_sky_nishita_disc": ("SKY", sky("NISHITA", sun_elevation=math.radians(12.0),
+                                          sun_rotation=math.radians(170.0), sun_size=math.radians(3.0))),
+    "world_sky_nishita_lit": ("SKY_LIT", sky("NISHITA", sun_elevation=math.radians(35.0),
+                                             sun_rotation=math.radians(120.0))),
+}
+ALL_NODE_SCENES = {**NODE_SCENES, **NODE_EXTRA_SCENES}
 # The quick mode of `make test` (parity.py --nodes --quick) renders them all: emission only, a few seconds each.
 QUICK_NODE_SCENES = list(NODE_SCENES)
 
@@ -412,7 +424,7 @@ def _sky_world(scene, graph):
 
 
 def build_node_scene(name, scene, size=128, out_dir="."):
-    geometry, graph = NODE_SCENES[name]
+    geometry, graph = ALL_NODE_SCENES[name]
     scene.world = None
     if geometry in ("SKY", "SKY_LIT"):
         # The world alone, seen by a wide camera looking 30° above the horizon toward −Y (the Sky Texture's

@@ -261,7 +261,7 @@ SCENES.update({
 EXTRA_SCENES = {"environment_hdr": build_environment_hdr}
 # Per-node scenes (tests/parity/node_scenes.py): run by `parity.py --nodes`.
 NODE_SCENES = {name: (lambda n: lambda scene, size=128, out_dir=".": node_scenes.build_node_scene(
-    n, scene, size=size, out_dir=out_dir))(name) for name in node_scenes.NODE_SCENES}
+    n, scene, size=size, out_dir=out_dir))(name) for name in node_scenes.ALL_NODE_SCENES}
 BY_NAME = {**SCENES, **EXTRA_SCENES, **NODE_SCENES}
 
 

@@ -222,10 +222,17 @@ class ProceduralNodes:
 
     def _ShaderNodeTexSky(self, node, out, ctx):
         from . import sky
-        if node.sky_type != "PREETHAM":
+        if node.sky_type not in ("PREETHAM", "NISHITA"):
             self.unsupported(node, f"sky type {node.sky_type} is not supported yet")
             return None
         socket = node.inputs["Vector"]
         vector = self.input(socket, ctx) if socket.is_linked else self.coord("GENERATED")
-        offset = self.tables.add_consts(sky.preetham_state(tuple(node.sun_direction), node.turbidity))
-        return self.program.op("SKY", vector, i=(offset, self.tables.enum("sky_models")["PREETHAM"]))
+        if node.sky_type == "PREETHAM":
+            state = sky.preetham_state(tuple(node.sun_direction), node.turbidity)
+        else:
+            self.warn(f"Nishita sky '{node.name}' uses published spectral tables, not Cycles' own: expect its "
+                      "brightness and colour within about 15 % of Cycles'")
+            state = [node.sun_elevation, node.sun_rotation, node.altitude, node.air_density, node.dust_density,
+                     node.ozone_density, float(node.sun_disc), node.sun_size, node.sun_intensity]
+        return self.program.op("SKY", vector, i=(self.tables.add_consts(state),
+                                                 self.tables.enum("sky_models")[node.sky_type]))
