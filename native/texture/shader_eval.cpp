@@ -114,6 +114,13 @@ Vec3 coord(const ShadingInputs& in, CoordKind kind, uint32_t offset) {
         }
         case CoordKind::ObjectLocation: return in.object_location;
         case CoordKind::ObjectIndex: return Vec3(in.object_index);
+        case CoordKind::Tangent: {
+            // The direction around the texture space's Z axis, (−(g_y − ½), g_x − ½, 0), carried to world space as
+            // a normal (Cycles does), then projected into the shading plane.
+            const Vec3 around(-(in.generated.y - 0.5f), in.generated.x - 0.5f, 0.f);
+            const Vec3 t = safe_normalize(cross(in.normal_to_world.vector(around), in.normal));
+            return cross(in.normal, t);
+        }
     }
     return Vec3(0.f);
 }

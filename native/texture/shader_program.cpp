@@ -24,7 +24,7 @@ const std::vector<std::string>& shader_op_names() {
 const std::vector<std::string>& coord_kind_names() {
     static const std::vector<std::string> names = {"UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING",
                                                    "POSITION", "TRUE_NORMAL", "BACKFACING", "REFLECTION",
-                                                   "OBJECT_LOCATION", "OBJECT_INDEX"};
+                                                   "OBJECT_LOCATION", "OBJECT_INDEX", "TANGENT"};
     return names;
 }
 const std::vector<std::string>& image_projection_names() {

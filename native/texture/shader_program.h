@@ -81,7 +81,8 @@ const std::vector<std::string>& shader_op_names();
 /// view direction, the normals its opposite, UV and OBJECT_LOCATION 0.
 enum class CoordKind : uint32_t {
     Uv, Generated, Object, Normal, WorldNormal, Incoming, Position, TrueNormal, Backfacing, Reflection, ObjectLocation,
-    ObjectIndex  // the object's pass index (Object Info > Object Index)
+    ObjectIndex,  // the object's pass index (Object Info > Object Index)
+    Tangent       // Geometry > Tangent: the tangent around the object's Z axis of Generated space (Cycles' default)
 };
 // Procedural-texture enumerations by their Blender identifiers.
 const std::vector<std::string>& musgrave_type_names();

@@ -297,6 +297,7 @@ NODE_SCENES = {
     "node_geometry_position": ("PLANE", scaled(geometry_output("Position"), 0.5)),
     "node_geometry_normal": ("SPHERE", geometry_output("Normal")),
     "node_geometry_incoming": ("SPHERE", geometry_output("Incoming")),
+    "node_geometry_tangent": ("SPHERE", geometry_output("Tangent")),
     "node_object_info_location": ("PLANE", absolute(lambda nt, c: node(nt, "ShaderNodeObjectInfo").outputs["Location"])),
     "node_layer_weight_fresnel": ("SPHERE", with_normal_input("ShaderNodeLayerWeight", "Fresnel", Blend=0.3)),
     "node_layer_weight_facing": ("SPHERE", with_normal_input("ShaderNodeLayerWeight", "Facing", Blend=0.7)),

@@ -132,7 +132,7 @@ class NodeCompiler(ProceduralNodes):
     def coord(self, kind):
         if kind == "UV":
             self.uses.add("UV")
-        elif kind in ("GENERATED", "OBJECT") and not self.world:
+        elif kind in ("GENERATED", "OBJECT", "TANGENT") and not self.world:
             self.uses.add("GENERATED")
         moves = kind in ("UV", "GENERATED", "OBJECT", "POSITION")
         return self.program.op("COORD", i=(self.tables.enum("coord_kinds")[kind], self.offset if moves else 0))
@@ -208,7 +208,7 @@ class NodeCompiler(ProceduralNodes):
 
     def _ShaderNodeNewGeometry(self, node, out, ctx):
         kind = {"Position": "POSITION", "Normal": "WORLD_NORMAL", "True Normal": "TRUE_NORMAL",
-                "Incoming": "INCOMING", "Backfacing": "BACKFACING"}.get(out.identifier)
+                "Incoming": "INCOMING", "Backfacing": "BACKFACING", "Tangent": "TANGENT"}.get(out.identifier)
         if kind is None:
             self.unsupported(node, f"output '{out.name}' is not supported yet")
             return None
