@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/math.h"
+#include "texture/cie.h"
 #include "texture/converter_nodes.h"
 #include "texture/procedural.h"
 #include "texture/shader_program.h"
@@ -209,6 +210,7 @@ Vec3 ShaderLibrary::evaluate_node(const ShaderOp& op, const Vec3* regs, const Sh
         case ShaderOpCode::Sky:
             if (SkyModel(op.i[1]) == SkyModel::Nishita) return m_skies[size_t(m_sky_of_op[size_t(&op - m_ops.data())])].radiance(a);
             return sky_radiance(SkyModel(op.i[1]), &m_consts[op.i[0]], a);
+        case ShaderOpCode::Blackbody: return blackbody_rec709(a.x);
         case ShaderOpCode::Curves: {
             // Cycles' RGB/Vector/Float Curves: the baked curves read at (v − min x)/range, extrapolated linearly
             // past the ends, blended with the input by fac.

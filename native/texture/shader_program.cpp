@@ -18,7 +18,7 @@ const std::vector<std::string>& shader_op_names() {
         "CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE", "AVERAGE",
         "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE", "TEX_WHITE_NOISE",
         "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER", "TEX_GRADIENT", "TEX_BRICK",
-        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "ATTRIBUTE", "SKY", "CURVES"};
+        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "ATTRIBUTE", "SKY", "CURVES", "BLACKBODY"};
     return names;
 }
 const std::vector<std::string>& coord_kind_names() {
@@ -113,7 +113,8 @@ int arity(ShaderOpCode code) {
         case ShaderOpCode::NormalMap:
         case ShaderOpCode::Invert: return 2;
         case ShaderOpCode::TexGradient:
-        case ShaderOpCode::Sky: return 1;
+        case ShaderOpCode::Sky:
+        case ShaderOpCode::Blackbody: return 1;
         case ShaderOpCode::TexWhiteNoise:
         case ShaderOpCode::TexMagic:
         case ShaderOpCode::LayerWeight:

@@ -66,6 +66,7 @@ enum class ShaderOpCode : uint32_t {
     Sky,             // a: direction; i0: offset of the model's precomputed state in shader_consts, i1: sky_models
     Curves,          // a: fac, b: value(s); i0: ramp (the curves baked over [min x, max x]), i1: offset of (min x,
                      // x range) in shader_consts, i2: 0 per channel (RGB/Vector Curves), 1 one value (Float Curve)
+    Blackbody,       // a: temperature (K) → colour of luminance 1
 };
 /// Bit k set: immediate i_k of the operation is a register it reads (validated like a, b, c).
 uint32_t shader_op_register_immediates(ShaderOpCode code);

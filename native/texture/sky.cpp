@@ -54,3 +54,24 @@ Vec3 sky_radiance(SkyModel model, const float* state, const Vec3& d) {
 }
 
 }  // namespace candela
+
+#include "texture/cie.h"
+
+namespace candela {
+
+Vec3 blackbody_rec709(float kelvin) {
+    // Planck's spectral radiance up to a constant: λ⁻⁵ / (exp(hc/(λ k T)) − 1), hc/k = 1.4388e-2 m·K. Only the
+    // chromaticity matters: the result is normalised to luminance 1.
+    const double t = std::fmax(double(kelvin), 800.0);
+    double xyz[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < k_cie_samples; ++k) {
+        const double lambda = (double(k_cie_first_nm) + double(k_cie_step_nm) * k) * 1e-9;
+        const double planck = 1.0 / (std::pow(lambda * 1e6, 5.0) * (std::exp(1.4388e-2 / (lambda * t)) - 1.0));
+        for (int c = 0; c < 3; ++c) xyz[c] += planck * double(k_cie_cmf[k][c]);
+    }
+    Vec3 rgb = vmax(xyz_to_rec709(Vec3(float(xyz[0]), float(xyz[1]), float(xyz[2]))), Vec3(0.f));
+    const float lum = luminance(rgb);
+    return lum > 0.f ? rgb / lum : Vec3(0.f);
+}
+
+}  // namespace candela

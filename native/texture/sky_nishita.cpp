@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/math.h"
+#include "texture/cie.h"
 #include "texture/sky.h"
 
 namespace candela {
@@ -14,15 +15,6 @@ constexpr double k_earth = 6360e3, k_atmosphere = 6420e3, k_rayleigh_height = 8e
 constexpr double k_mie = 2e-5, k_mie_g = 0.76;
 constexpr int k_steps = 32, k_light_steps = 16;
 
-// CIE 1931 2° standard observer, x̄ ȳ z̄ at 380…780 nm in 20 nm steps (CIE 015:2004, table T.4).
-constexpr float k_cmf[k_lambdas][3] = {
-    {0.001368f, 0.000039f, 0.006450f}, {0.014310f, 0.000396f, 0.067850f}, {0.134380f, 0.004000f, 0.645600f},
-    {0.348280f, 0.023000f, 1.747060f}, {0.290800f, 0.060000f, 1.669200f}, {0.095640f, 0.139020f, 0.812950f},
-    {0.004900f, 0.323000f, 0.272000f}, {0.063270f, 0.710000f, 0.078250f}, {0.290400f, 0.954000f, 0.020300f},
-    {0.594500f, 0.995000f, 0.003900f}, {0.916300f, 0.870000f, 0.001650f}, {1.062200f, 0.631000f, 0.000800f},
-    {0.854450f, 0.381000f, 0.000190f}, {0.447900f, 0.175000f, 0.000020f}, {0.164900f, 0.061000f, 0.f},
-    {0.046770f, 0.017000f, 0.f}, {0.011359f, 0.004102f, 0.f}, {0.002899f, 0.001047f, 0.f},
-    {0.000690f, 0.000249f, 0.f}, {0.000166f, 0.000060f, 0.f}, {0.000042f, 0.000015f, 0.f}};
 // Extraterrestrial solar spectral irradiance, W/m²/nm (ASTM E-490 AM0, 20 nm means, rounded to 0.05).
 constexpr float k_sun[k_lambdas] = {1.10f, 1.70f, 1.75f, 1.80f, 2.05f, 2.05f, 1.95f, 1.85f, 1.87f, 1.80f, 1.82f,
                                     1.75f, 1.67f, 1.60f, 1.52f, 1.50f, 1.41f, 1.35f, 1.28f, 1.23f, 1.18f};
@@ -77,7 +69,7 @@ void optical_depth(const D3& p, const D3& d, double depth[3]) {
 Vec3 spectrum_to_rec709(const double spectrum[k_lambdas]) {
     double xyz[3] = {0.0, 0.0, 0.0};
     for (int k = 0; k < k_lambdas; ++k)
-        for (int c = 0; c < 3; ++c) xyz[c] += spectrum[k] * k_cmf[k][c] * 20.0;  // ∫ … dλ, 20 nm bins
+        for (int c = 0; c < 3; ++c) xyz[c] += spectrum[k] * k_cie_cmf[k][c] * 20.0;  // ∫ … dλ, 20 nm bins
     return xyz_to_rec709(Vec3(float(xyz[0]), float(xyz[1]), float(xyz[2])));
 }
 

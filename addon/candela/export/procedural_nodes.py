@@ -236,3 +236,6 @@ class ProceduralNodes:
                      node.ozone_density, float(node.sun_disc), node.sun_size, node.sun_intensity]
         return self.program.op("SKY", vector, i=(self.tables.add_consts(state),
                                                  self.tables.enum("sky_models")[node.sky_type]))
+
+    def _ShaderNodeBlackbody(self, node, out, ctx):
+        return self.program.op("BLACKBODY", self.scalar(node, "Temperature", ctx))
