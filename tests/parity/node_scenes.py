@@ -334,6 +334,8 @@ NODE_SCENES = {
     "node_float_curve": ("PLANE", curves("ShaderNodeFloatCurve", tex("ShaderNodeTexNoise", Scale=2.0), "Value",
                                          _edit_float)),
     "node_object_info_index": ("PLANE", object_index),
+    "bump_plane_lit": ("PLANE_LIT", (tex("ShaderNodeTexNoise", Scale=3.0, Detail=2.0), False)),
+    "displacement_plane_lit": ("PLANE_LIT", (tex("ShaderNodeTexWave", Scale=1.5, Distortion=1.0), True)),
     "node_bump_noise": ("PLANE", bumped(tex("ShaderNodeTexNoise", Scale=3.0, Detail=1.0), distance=0.2)),
     "node_bump_image_uv": ("PLANE", bumped(image_uv, strength=0.8, distance=0.05)),
     "node_bump_object_invert": ("PLANE", bumped(tex("ShaderNodeTexWave", vector="Object", Scale=1.0), distance=0.02,
@@ -345,6 +347,10 @@ NODE_SCENES = {
 # 1.26 (sky, 48 px), 0.98 with 13–64 % off per block (sun disc in view) and 1.054 (a ground lit by sky and sun)
 # times Cycles' brightness. Run them with `parity.py --nodes --scenes world_sky_nishita,…`.
 NODE_EXTRA_SCENES = {
+    # A bump-mapped sphere under a sun: 1.06× Cycles, up to 1.9× near the terminator, where Cycles multiplies the
+    # BSDF of a bumped closure by Chiang et al.'s (2019) bump shadowing term; that belongs in the integrators'
+    # shared BSDF evaluation (docs/textures.md, "Bump").
+    "bump_sphere_lit": ("SPHERE_LIT", (tex("ShaderNodeTexVoronoi", "Distance", vector="Object", Scale=3.0), False)),
     # Blackbody below 1500 K: Candela integrates Planck's law over the 20 nm CIE table, Cycles uses fitted curves;
     # 0.997 overall, green up to 2 % low and the (tiny) blue channel up to 12 % off near 800 K.
     "node_blackbody_low": ("PLANE", lambda nt, c: _blackbody(nt, map_range("LINEAR", To_Min=800.0, To_Max=2500.0)(nt, c))),
@@ -434,8 +440,41 @@ def _sky_world(scene, graph):
     scene.world = w
 
 
+def _lit_material(name, height_graph, displacement):
+    """A white Diffuse BSDF whose normal is bumped by height_graph: through a Bump node into its Normal, or (with
+    `displacement`) through a Displacement node into the Material Output (Cycles' "bump only")."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    diffuse = node(nt, "ShaderNodeBsdfDiffuse", Color=(0.8, 0.8, 0.8, 1.0))
+    nt.links.new(diffuse.outputs[0], out.inputs["Surface"])
+    coord = nt.nodes.new("ShaderNodeTexCoord")
+    if displacement:
+        d = node(nt, "ShaderNodeDisplacement", Midlevel=0.5, Scale=0.15)
+        nt.links.new(height_graph(nt, coord), d.inputs["Height"])
+        nt.links.new(d.outputs[0], out.inputs["Displacement"])
+        mat.cycles.displacement_method = "BUMP"
+    else:
+        b = node(nt, "ShaderNodeBump", Strength=0.9, Distance=0.3)
+        nt.links.new(height_graph(nt, coord), b.inputs["Height"])
+        nt.links.new(b.outputs["Normal"], diffuse.inputs["Normal"])
+    return mat
+
+
 def build_node_scene(name, scene, size=128, out_dir="."):
     geometry, graph = ALL_NODE_SCENES[name]
+    if geometry in ("PLANE_LIT", "SPHERE_LIT"):
+        # Bump mapping as it is used: a bumped diffuse surface under a sun (direct light only on a lone object).
+        height, displacement = graph
+        base = "PLANE" if geometry == "PLANE_LIT" else "SPHERE"
+        build_node_scene_geometry(name, scene, base, _lit_material(name, height, displacement))
+        sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+        sun.data.energy, sun.data.angle = 3.0, 0.0
+        sun.rotation_euler = (math.radians(40.0), 0.0, math.radians(30.0))
+        scene.collection.objects.link(sun)
+        return 1.0
     scene.world = None
     if geometry in ("SKY", "SKY_LIT"):
         # The world alone, seen by a wide camera looking 30° above the horizon toward −Y (the Sky Texture's
@@ -459,7 +498,13 @@ def build_node_scene(name, scene, size=128, out_dir="."):
     frame = bpy.data.objects.new("Frame", None)
     frame.matrix_world = Matrix.LocRotScale(Vector((0.3, -0.1, 0.2)), Euler((0.2, 0.1, 0.7)), Vector((0.5, 0.7, 0.6)))
     scene.collection.objects.link(frame)
-    mat = _emission_material(name, graph)
+    build_node_scene_geometry(name, scene, geometry, _emission_material(name, graph))
+    return 1.0
+
+
+def build_node_scene_geometry(name, scene, geometry, mat):
+    """The PLANE or SPHERE of the module docstring with its camera, material `mat`."""
+    scene.world = None
     if geometry == "PLANE":
         me = _grid(name)
         ob = bpy.data.objects.new(name, me)
@@ -480,4 +525,3 @@ def build_node_scene(name, scene, size=128, out_dir="."):
     me.materials.append(mat)
     ob.pass_index = 3
     scene.collection.objects.link(ob)
-    return 1.0
