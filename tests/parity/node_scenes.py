@@ -347,6 +347,8 @@ NODE_SCENES = {
 # 1.26 (sky, 48 px), 0.98 with 13–64 % off per block (sun disc in view) and 1.054 (a ground lit by sky and sun)
 # times Cycles' brightness. Run them with `parity.py --nodes --scenes world_sky_nishita,…`.
 NODE_EXTRA_SCENES = {
+    # The whole-render timing scene (procedural textures only): `parity.py --nodes --scenes procedural_heavy`.
+    "procedural_heavy": ("PROCEDURAL_HEAVY", None),
     # A bump-mapped sphere under a sun: 1.06× Cycles, up to 1.9× near the terminator, where Cycles multiplies the
     # BSDF of a bumped closure by Chiang et al.'s (2019) bump shadowing term; that belongs in the integrators'
     # shared BSDF evaluation (docs/textures.md, "Bump").
@@ -463,8 +465,42 @@ def _lit_material(name, height_graph, displacement):
     return mat
 
 
+def _procedural_heavy_material(name):
+    """A material made only of procedural textures, as real files use them: a Diffuse colour mixing Noise (detail 6,
+    distortion) and Voronoi colours by a Musgrave ridge mask, bumped by detailed Noise, lit by a sun. The timing
+    scene of docs/textures.md ("Cost")."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    coord = nt.nodes.new("ShaderNodeTexCoord")
+    diffuse = node(nt, "ShaderNodeBsdfDiffuse")
+    noise = tex("ShaderNodeTexNoise", "Color", Scale=4.0, Detail=6.0, Distortion=0.4)(nt, coord)
+    cells = tex("ShaderNodeTexVoronoi", "Color", Scale=8.0)(nt, coord)
+    mask = tex("ShaderNodeTexMusgrave", props={"musgrave_type": "RIDGED_MULTIFRACTAL"}, Scale=3.0, Detail=4.0,
+               Offset=1.0, Gain=1.5)(nt, coord)
+    mix = node(nt, "ShaderNodeMixRGB")
+    nt.links.new(mask, mix.inputs["Fac"])
+    nt.links.new(noise, mix.inputs["Color1"])
+    nt.links.new(cells, mix.inputs["Color2"])
+    nt.links.new(mix.outputs["Color"], diffuse.inputs["Color"])
+    bump = node(nt, "ShaderNodeBump", Strength=0.5, Distance=0.05)
+    nt.links.new(tex("ShaderNodeTexNoise", Scale=12.0, Detail=5.0)(nt, coord), bump.inputs["Height"])
+    nt.links.new(bump.outputs["Normal"], diffuse.inputs["Normal"])
+    nt.links.new(diffuse.outputs[0], out.inputs["Surface"])
+    return mat
+
+
 def build_node_scene(name, scene, size=128, out_dir="."):
     geometry, graph = ALL_NODE_SCENES[name]
+    if geometry == "PROCEDURAL_HEAVY":
+        build_node_scene_geometry(name, scene, "PLANE", _procedural_heavy_material(name))
+        sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+        sun.data.energy, sun.data.angle = 3.0, 0.0
+        sun.rotation_euler = (math.radians(30.0), 0.0, math.radians(30.0))
+        scene.collection.objects.link(sun)
+        return 1.0
     if geometry in ("PLANE_LIT", "SPHERE_LIT"):
         # Bump mapping as it is used: a bumped diffuse surface under a sun (direct light only on a lone object).
         height, displacement = graph
