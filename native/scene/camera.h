@@ -6,6 +6,8 @@
 // Raster coordinates are Blender's: x to the right, y up, (0, 0) the bottom-left corner of the full frame.
 #pragma once
 
+#include <cmath>
+
 #include "core/params.h"
 #include "core/transform.h"
 #include "core/vec.h"
@@ -35,6 +37,12 @@ public:
     Vec3 forward() const { return normalize(m_to_world.vector(Vec3(0.f, 0.f, -1.f))); }
 
     Vec3 position() const { return m_to_world.translation(); }
+    /// The width of one pixel's footprint at `distance` from the camera (Cycles' compact ray differential of a
+    /// camera ray: the pixel's size for an orthographic camera, distance × its angle at the image centre otherwise).
+    float pixel_footprint(float distance) const {
+        const float pixel = 0.5f * (std::fabs(m_raster_to_x) + std::fabs(m_raster_to_y));
+        return m_ortho ? pixel : distance * pixel * m_tan_half_fov;
+    }
     int full_width() const { return m_width; }
     int full_height() const { return m_height; }
     /// Moves the camera by `offset` (the scene is rendered in camera-world space).

@@ -131,7 +131,9 @@ private:
     /// turned to the side of the unit winding normal ng; ng itself for a flat triangle.
     static Vec3 shading_normal(const MeshShading& s, const Placement& pl, uint32_t prim, float b1, float b2, const Vec3& ng);
     /// The shader program's inputs at a hit on placement `pl`, seen from wo (scene/shading.cpp).
-    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl) const;
+    /// With `differentials`, also the offsets of Bump's finite differences (ShadingInputs::dp …).
+    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl,
+                                 bool differentials = false) const;
     /// The Holdout weight of a material whose weight comes from its shader program, at the hit (shading.cpp).
     float varying_holdout(const SurfaceHit& hit, const Vec3& wo) const;
     /// Whether material k's emission comes from its shader program (a textured emitter).

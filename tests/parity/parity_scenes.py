@@ -20,6 +20,7 @@ import bpy
 from mathutils import Matrix
 
 import cornell_box as cb
+import node_scenes
 import scenes as ex   # examples/scenes.py
 
 WHITE = (1.0, 1.0, 1.0)
@@ -258,7 +259,10 @@ SCENES.update({
 # Not in the default list until Candela reads Environment Texture nodes (issue #3, h-textures): run it with
 # `--scenes environment_hdr`, then add it to parity.py's ALL_SCENES.
 EXTRA_SCENES = {"environment_hdr": build_environment_hdr}
-BY_NAME = {**SCENES, **EXTRA_SCENES}
+# Per-node scenes (tests/parity/node_scenes.py): run by `parity.py --nodes`.
+NODE_SCENES = {name: (lambda n: lambda scene, size=128, out_dir=".": node_scenes.build_node_scene(
+    n, scene, size=size, out_dir=out_dir))(name) for name in node_scenes.ALL_NODE_SCENES}
+BY_NAME = {**SCENES, **EXTRA_SCENES, **NODE_SCENES}
 
 
 def build(name, scene=None, size=128, threads=0, out_dir="."):
