@@ -89,13 +89,16 @@ public:
     /// point `ref`; false if ref is behind the camera, outside the frame, or outside [clip_start, clip_end] along
     /// the view axis (exactly the points a generate_ray ray could reach before tmax), or the camera is not
     /// connectable.
-    bool connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out) const;
+    /// `margin` (pixels) widens the frame: filter importance sampling sends the camera rays of border pixels up to
+    /// half the filter's support beyond it, so connections there must count too (the film keeps their weights
+    /// for the pixels inside).
+    bool connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out, float margin = 0.f) const;
     /// The raster position of a ray generate_ray could produce (its origin on the lens / clip plane, or anywhere
     /// on the same line; its direction): false outside the frame or if it does not point forward.
-    bool raster_of(const Ray& camera_ray, Vec2* raster) const;
+    bool raster_of(const Ray& camera_ray, Vec2* raster, float margin = 0.f) const;
     /// pdf_pos and pdf_dir (as in CameraConnection) of a camera ray: pdf_dir is 0 outside the frame, and both
     /// are 0 where the ray does not leave the aperture (its support: Aperture::contains).
-    void pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir) const;
+    void pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir, float margin = 0.f) const;
     /// Perspective: area of the viewplane rectangle at z = −1 (tan_half_fov included); orthographic: the
     /// viewplane's area in world units.
     float image_plane_area() const;
@@ -104,7 +107,7 @@ public:
 
 private:
     /// The raster position of viewplane point (sx, sy); false outside the full frame [0, W] × [0, H].
-    bool viewplane_to_raster(float sx, float sy, Vec2* raster) const;
+    bool viewplane_to_raster(float sx, float sy, Vec2* raster, float margin = 0.f) const;
     /// The camera-space ray of a world ray, with its origin moved along it onto the lens plane (z = 0,
     /// perspective) or the clip_start plane (orthographic), and its direction unit length; false if it does
     /// not point forward (d.z < 0).

@@ -44,9 +44,10 @@ float Camera::image_plane_area() const {
     return m_ortho ? a : a * m_tan_half_fov * m_tan_half_fov;
 }
 
-bool Camera::viewplane_to_raster(float sx, float sy, Vec2* raster) const {
+bool Camera::viewplane_to_raster(float sx, float sy, Vec2* raster, float margin) const {
     const float x = (sx - m_left) / m_raster_to_x, y = (sy - m_bottom) / m_raster_to_y;
-    if (!(x >= 0.f && x <= float(m_width) && y >= 0.f && y <= float(m_height))) return false;  // NaN fails too
+    if (!(x >= -margin && x <= float(m_width) + margin && y >= -margin && y <= float(m_height) + margin))
+        return false;  // NaN fails too
     *raster = {x, y};
     return true;
 }
@@ -65,7 +66,7 @@ bool Camera::to_lens_plane(const Ray& ray, Vec3* o_cam, Vec3* d_cam) const {
     return true;
 }
 
-bool Camera::raster_of(const Ray& camera_ray, Vec2* raster) const {
+bool Camera::raster_of(const Ray& camera_ray, Vec2* raster, float margin) const {
     Vec3 o, d;
     if (!to_lens_plane(camera_ray, &o, &d)) return false;
     // The ray's point on the plane of focus (f ahead of the lens or clip plane) is the pinhole ray's point there.
@@ -75,12 +76,12 @@ bool Camera::raster_of(const Ray& camera_ray, Vec2* raster) const {
     const float f = dof ? m_focus_distance : (m_ortho ? 0.f : 1.f);
     const float s = f / -d.z;
     const float fx = o.x + d.x * s, fy = o.y + d.y * s;
-    if (m_ortho) return viewplane_to_raster(fx, fy, raster);
+    if (m_ortho) return viewplane_to_raster(fx, fy, raster, margin);
     const float to_view = 1.f / (f * m_tan_half_fov);
-    return viewplane_to_raster(fx * to_view, fy * to_view, raster);
+    return viewplane_to_raster(fx * to_view, fy * to_view, raster, margin);
 }
 
-void Camera::pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir) const {
+void Camera::pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir, float margin) const {
     *pdf_pos = 0.f;
     *pdf_dir = 0.f;
     Vec3 o, d;
@@ -89,7 +90,7 @@ void Camera::pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir) const
     if (m_ortho) {
         *pdf_pos = 1.f / image_plane_area();
         // A pinhole orthographic camera's direction is a delta: no density (connectable() is false).
-        if (!dof || !to_lens_plane(camera_ray, &o, &d) || !raster_of(camera_ray, &raster)) return;
+        if (!dof || !to_lens_plane(camera_ray, &o, &d) || !raster_of(camera_ray, &raster, margin)) return;
         // The lens offset that gives this direction: l = −f·(d.x, d.y)/(−d.z).
         const float s = m_focus_distance / -d.z;
         if (!m_aperture.contains({-d.x * s, -d.y * s})) return;
@@ -103,12 +104,12 @@ void Camera::pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir) const
         *pdf_pos = 0.f;
         return;
     }
-    if (!raster_of(camera_ray, &raster)) return;
+    if (!raster_of(camera_ray, &raster, margin)) return;
     const float cos_theta = -d.z;
     *pdf_dir = 1.f / (image_plane_area() * cos_theta * cos_theta * cos_theta);
 }
 
-bool Camera::connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out) const {
+bool Camera::connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out, float margin) const {
     if (!connectable()) return false;
     const Vec3 p = m_to_camera.point(ref);
     const float depth = -p.z;
@@ -121,7 +122,7 @@ bool Camera::connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out) const 
         const Vec3 L(lens.x, lens.y, 0.f);
         const float f = dof ? m_focus_distance : 1.f;
         const float s = f / depth, to_view = 1.f / (f * m_tan_half_fov);
-        if (!viewplane_to_raster((L.x + (p.x - L.x) * s) * to_view, (L.y + (p.y - L.y) * s) * to_view, &c.raster))
+        if (!viewplane_to_raster((L.x + (p.x - L.x) * s) * to_view, (L.y + (p.y - L.y) * s) * to_view, &c.raster, margin))
             return false;
         const Vec3 to_lens = L - p;
         const float d_cam = length(to_lens);
@@ -139,7 +140,7 @@ bool Camera::connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out) const 
         // of that vector along it, so s = p − (1 − t)·l and the origin is p + t·l.
         const float f = m_focus_distance;
         const float t = (depth - m_clip_start) / f;
-        if (!viewplane_to_raster(p.x - (1.f - t) * lens.x, p.y - (1.f - t) * lens.y, &c.raster)) return false;
+        if (!viewplane_to_raster(p.x - (1.f - t) * lens.x, p.y - (1.f - t) * lens.y, &c.raster, margin)) return false;
         const Vec3 back(lens.x, lens.y, f);  // toward the origin
         const float back_len = length(back);
         const float cos_theta = f / back_len;

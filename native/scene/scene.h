@@ -114,6 +114,11 @@ public:
         return hit.material < m_material_holdout.size() ? m_material_holdout[hit.material] : 0.f;
     }
     bool has_holdouts() const { return m_has_holdouts; }
+    /// Whether the object hit is visible to rays of `type` (Blender's Ray Visibility).
+    bool visible_to(const SurfaceHit& hit, uint8_t type) const { return (m_object_flags[hit.object] & type) != 0; }
+    /// Ray types some object is hidden from (light-rooted integrators cannot honour DIFFUSE, GLOSSY and
+    /// TRANSMISSION visibility, and say so).
+    uint32_t hidden_ray_types() const { return m_hidden_from; }
     /// Blender's pass index of the object hit (the IndexOB pass).
     uint32_t pass_index(const SurfaceHit& hit) const;
 
