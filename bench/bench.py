@@ -32,6 +32,7 @@ import argparse
 import datetime
 import json
 import os
+import re
 import platform
 import shutil
 import subprocess
@@ -41,6 +42,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
+LT_SHARE_TARGET = 0.5   # issue 15: LIGHT traces at least half the raw Embree incoherent ray rate
 SPEED_TARGET = 2.0          # Candela samples/s over Cycles samples/s
 BRIGHTNESS_TOL = 0.02       # |mean ratio - 1|
 EXPORT_TARGET_S = 0.5       # 1 M triangles from Blender to the native Session
@@ -426,6 +428,23 @@ def main():
             print(tail(out))
             report["errors"].append(raw_note)
 
+    # 4b. The light tracer's ray rate on the same dump (issue 15: at least half the raw incoherent rate), measured
+    # by the command-line renderer right after the raw rate, so both see the same machine load.
+    lt_rate = None
+    cli_path = os.path.join(build, "bin", "candela")
+    if raw and os.access(cli_path, os.X_OK):
+        print("[4b] light tracer rays: candela --set integrator=LIGHT")
+        cmd = [cli_path, dump_dir, "-o", os.path.join(outdir, "light_tracer.exr"), "--samples", str(s2),
+               "--threads", str(threads), "--set", "integrator=LIGHT"]
+        rc, out = run(cmd, os.path.join(outdir, "light_tracer.log"))
+        m = re.search(r"([0-9.]+) rays/s", out)
+        if rc == 0 and m:
+            lt_rate = float(m.group(1))
+        else:
+            report["errors"].append(f"light tracer run failed (exit {rc})")
+            print(tail(out))
+    lt_share = lt_rate / raw if lt_rate and raw else None
+
     # 5. Results.
     cyc, can = report["engines"].get("CYCLES"), report["engines"].get("CANDELA")
     cyc_rate, can_rate = rate(cyc, s1, s2), rate(can, s1, s2)
@@ -481,6 +500,8 @@ def main():
         "raw_rays_per_second": raw, "raw_note": raw_note,
         "path_tracer_rays_per_second": pt_rate, "path_tracer_rays_method": pt_method,
         "path_tracer_share_of_raw": share,
+        "light_tracer_rays_per_second": lt_rate, "light_tracer_share_of_raw": lt_share,
+        "light_tracer_share_target": LT_SHARE_TARGET,
     }
 
     print()
@@ -516,6 +537,9 @@ def main():
     print(f"path tracer rays/s          {fmt_rate(pt_rate)}" + (f"  [{pt_method}]" if pt_method else
                                                               "  (the add-on reported no ray count)"))
     print(f"path tracer share of raw    {'n/a' if share is None else f'{share:.1%}'}")
+    print(f"light tracer rays/s         {fmt_rate(lt_rate)}")
+    print(f"light tracer share of raw   {'n/a' if lt_share is None else f'{lt_share:.1%}'}   target >= "
+          f"{LT_SHARE_TARGET:.0%}   {verdict(None if lt_share is None else lt_share >= LT_SHARE_TARGET)}")
     if export:
         for line in export_lines(export, a.instances, report):
             print(line)

@@ -55,10 +55,11 @@ def test_every_stage_reports(report):
                                                    ["CANDELA_POWER", "CANDELA", "CYCLES"]]
     res = rep["results"]
     for key in ("cycles_samples_per_second", "candela_samples_per_second", "candela_power_samples_per_second",
-                "raw_rays_per_second", "speed_ratio", "brightness_ratio"):
+                "raw_rays_per_second", "speed_ratio", "brightness_ratio", "light_tracer_rays_per_second"):
         assert res[key] is not None and res[key] > 0, key
     assert rep["export"]["export"]["best"]["triangles"] == 20000
     assert "paired speed ratio" in stdout
+    assert "light tracer share of raw" in stdout
 
 
 def test_the_equal_run_uses_cycles_light_selection_and_roulette(report):

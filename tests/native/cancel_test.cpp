@@ -6,8 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <cmath>
+#include <thread>
 
 #include "integrators/camera_tiles.h"
+#include "integrators/integrator.h"
+#include "reference_scenes.h"
+#include "session/session.h"
 #include "test_helpers.h"
 
 namespace candela::test {
@@ -46,6 +52,39 @@ TEST(Cancel, WorkAfterTheCancelFlagIsAtMostOneRowPerWorker) {
             const uint64_t bound = uint64_t(threads) * 16u * pass;  // one row of a 16-pixel tile, one pass's samples
             EXPECT_LE(tracer.paths.load() - cancel_at, bound) << threads << " threads, cancel at " << cancel_at;
         }
+    }
+}
+
+}  // namespace
+}  // namespace candela::test
+
+namespace candela::test {
+namespace {
+
+// Every integrator of the registry stops on cancel, mid-render, with the stop reason Cancelled and a finite partial
+// image. The latency from Session::cancel() to the end of join() is printed (the deterministic bound is the one
+// above: the flag is checked before every pixel row and every row of light paths; no assertion on time).
+TEST(Cancel, EveryIntegratorStopsMidRenderWithAFinitePartialImage) {
+    for (const IntegratorEntry& e : integrator_registry()) {
+        Params p = basic_params(48, 48, 100000, 5);
+        p.set("integrator", std::string(e.name));
+        p.set("threads", int64_t(2));
+        Session s(cornell_box(), std::move(p));
+        s.start();
+        const auto begin = std::chrono::steady_clock::now();
+        while (s.progress().work_done < 2 && std::chrono::steady_clock::now() - begin < std::chrono::seconds(60))
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        const auto asked = std::chrono::steady_clock::now();
+        s.cancel();
+        s.join();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - asked).count();
+        std::printf("%s: cancelled after %lld units, %.1f ms from cancel() to the end of the render\n", e.name,
+                    (long long)s.progress().work_done, ms);
+        EXPECT_FALSE(s.error()) << e.name << ": " << s.error().value_or("");
+        EXPECT_EQ(s.progress().stop_reason, StopReason::Cancelled) << e.name;
+        EXPECT_LT(s.progress().work_done, 100000) << e.name;
+        int ch = 0;
+        for (float v : s.get_pass("Combined", &ch)) ASSERT_TRUE(std::isfinite(v)) << e.name;
     }
 }
 
