@@ -52,6 +52,7 @@ accuracy: build
 parity: build
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --build $(BUILD) --docs docs
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --nodes --size 96 --build $(BUILD) --docs docs
+	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --integrator BDPT --build $(BUILD) --docs docs
 
 # docs/sampling.md and docs/sampling/*.png: one picture, error and time per sampling technique (~15 minutes;
 # the scenes' references are cached in build/sampling/cache).

@@ -187,7 +187,8 @@ def main():
     native = native_module()
     started = time.time()
     counts = [2 ** k for k in range(int(math.log2(ARGS.max_samples)) + 1)]
-    scene_names = ARGS.scenes.split(",") if ARGS.scenes else ["cornell_box", "soft_shadow", "veach_mis", "glossy"]
+    scene_names = ARGS.scenes.split(",") if ARGS.scenes else ["cornell_box", "soft_shadow", "veach_mis", "glossy",
+                                                              "caustic", "door"]
     configs = configurations(native)
     if ARGS.quick:
         configs = configs[:2] + configs[-1:] if len(configs) > 3 else configs

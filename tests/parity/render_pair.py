@@ -41,10 +41,11 @@ def parse_args():
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--out", required=True)
     ap.add_argument("--engines", default="CYCLES,CANDELA")
+    ap.add_argument("--integrator", default="PATH", help="Candela's integrator (a registry name)")
     return ap.parse_args(argv)
 
 
-def mirror_settings(scene, seed):
+def mirror_settings(scene, seed, integrator="PATH"):
     """The settings both engines must share beyond examples/cornell_box.configure_* (which set bounces etc.)."""
     c = scene.cycles
     c.pixel_filter_type = FILTER
@@ -57,7 +58,9 @@ def mirror_settings(scene, seed):
     p.filter_width = FILTER_WIDTH
     p.seed = seed
     p.use_animated_seed = False
-    p.light_selection = CANDELA_LIGHT_SELECTION
+    p.integrator = integrator
+    if integrator == "PATH":  # the other integrators choose lights their own way (or publish the same setting)
+        p.light_selection = CANDELA_LIGHT_SELECTION
     p.clamp_indirect = 0.0
     p.noise_threshold = 0.0
     p.time_limit = 0.0
@@ -81,7 +84,7 @@ def main():
             scene.render.engine = engine
             files, seconds = [], []
             for seed in SEEDS:
-                mirror_settings(scene, seed)
+                mirror_settings(scene, seed, a.integrator)
                 path = os.path.join(a.out, f"{name}_{engine.lower()}_seed{seed}.exr")
                 t0 = time.perf_counter()
                 render(scene, engine, half, path)
