@@ -5,6 +5,8 @@
 #include "integrators/bdpt/bdpt_settings.h"
 #include "integrators/light/light_integrator.h"
 #include "integrators/light/light_settings.h"
+#include "integrators/mlt/mlt_integrator.h"
+#include "integrators/mlt/mlt_settings.h"
 #include "integrators/path/path_integrator.h"
 #include "integrators/path/path_settings.h"
 
@@ -22,6 +24,14 @@ const std::vector<IntegratorEntry>& integrator_registry() {
          "Bidirectional path tracing: camera and light subpaths joined by every (s, t) strategy, weighted by multiple "
          "importance sampling (Veach 1997, ch. 10)",
          &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory},
+        {"MLT", "Metropolis",
+         "Primary-sample-space Metropolis light transport over the bidirectional path tracer (Kelemen et al. 2002): "
+         "chains of mutated paths, for light that is hard to find; Samples are mutations per pixel",
+         &make_mlt_integrator, &MltSettings::specs, &mlt_integrator_memory},
+        {"MMLT", "Multiplexed Metropolis",
+         "Multiplexed Metropolis light transport (Hachisuka et al. 2014): chains over path length and one "
+         "bidirectional strategy chosen per mutation; Samples are mutations per pixel",
+         &make_mmlt_integrator, &MltSettings::specs, &mlt_integrator_memory},
     };
     return registry;
 }
