@@ -1,6 +1,7 @@
 #include "integrators/mlt/mlt_integrator.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <string>
 
@@ -37,6 +38,8 @@ Bootstrap run_bootstrap(const PathSpace& space, const MltSettings& s, bool multi
     const size_t n = size_t(s.bootstrap) * size_t(boot.depths);
     boot.importance.assign(n, 0.f);
     constexpr size_t k_chunk = 1024;
+    counters.stage.begin("Bootstrap paths", int64_t(n));
+    std::atomic<int64_t> done{0};
     parallel_for(
         threads, (n + k_chunk - 1) / k_chunk,
         [&](size_t chunk) {
@@ -49,8 +52,10 @@ Bootstrap run_bootstrap(const PathSpace& space, const MltSettings& s, bool multi
                 boot.importance[e] = sample.importance;
             }
             stats.flush(counters);
+            counters.stage.set_done(std::min(int64_t(n), done.fetch_add(int64_t(k_chunk)) + int64_t(k_chunk)));
         },
         cancel);
+    counters.stage.end();
     return boot;
 }
 
@@ -80,7 +85,11 @@ public:
                     "light subpaths and connections (only camera and shadow visibility are honoured)");
         const PathSpace space(scene, m_settings.bdpt, emitters);
         const Bootstrap boot = run_bootstrap(space, m_settings, m_multiplexed, ps.seed, ctx.threads, ctx.counters, &ctx.cancel);
-        if (ctx.cancel.cancelled()) return;
+        if (ctx.cancel.cancelled()) {  // cancelled during the bootstrap: no chain, an empty image
+            ctx.counters.work_total = ps.samples;
+            ctx.counters.stop_reason = int(StopReason::Cancelled);
+            return;
+        }
         const MltBootstrap summary = summarise(boot, m_settings.bootstrap);
         const double b = summary.b;
 
