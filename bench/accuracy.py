@@ -93,6 +93,8 @@ def configurations(native):
         samplers = caps.get("samplers", ["RANDOM"]) if name == "PATH" else [None]
         for sampler in samplers:
             settings = [f"integrator={name}"] + ([f"sampler={sampler}"] if sampler and len(samplers) > 1 else [])
+            if name in ("MLT", "MMLT"):  # every count renders afresh: a bootstrap for the image size, not 10⁵ paths
+                settings += [f"mlt_bootstrap={1000 if ARGS.quick else 20000}", "mlt_chains=100"]
             label = f"Candela {name}" + (f" {sampler}" if sampler and len(samplers) > 1 else "")
             out.append((label, "CANDELA", settings))
     return out

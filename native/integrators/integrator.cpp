@@ -7,6 +7,8 @@
 #include "integrators/generators/generator_settings.h"
 #include "integrators/light/light_integrator.h"
 #include "integrators/light/light_settings.h"
+#include "integrators/mlt/mlt_integrator.h"
+#include "integrators/mlt/mlt_settings.h"
 #include "integrators/path/path_integrator.h"
 #include "integrators/path/path_settings.h"
 
@@ -36,6 +38,14 @@ const std::vector<IntegratorEntry>& integrator_registry() {
          "The course's receiver-gathering generator: indirect light from a ray shot from the visible point, its hit "
          "connected to a point on a light (direct light by next-event estimation, mirrors and glass by ray tracing)",
          &make_receiver_gathering_integrator, &GeneratorSettings::specs},
+        {"MLT", "Metropolis",
+         "Primary-sample-space Metropolis light transport over the bidirectional path tracer (Kelemen et al. 2002): "
+         "chains of mutated paths, for light that is hard to find; Samples are mutations per pixel",
+         &make_mlt_integrator, &MltSettings::specs, &mlt_integrator_memory},
+        {"MMLT", "Multiplexed Metropolis",
+         "Multiplexed Metropolis light transport (Hachisuka et al. 2014): chains over path length and one "
+         "bidirectional strategy chosen per mutation; Samples are mutations per pixel",
+         &make_mmlt_integrator, &MltSettings::specs, &mlt_integrator_memory},
     };
     return registry;
 }

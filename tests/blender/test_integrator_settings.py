@@ -99,3 +99,17 @@ def test_a_setting_outside_its_range_fails_with_its_name():
     sent["max_bounces"] = 5000
     with pytest.raises(ValueError, match="max_bounces"):
         native.require().Session(arrays, sent)
+
+
+def test_the_metropolis_integrators_publish_their_settings_under_their_saved_numbers():
+    _, _, properties, schema, ui_render = _modules()
+    items = {item[0]: item[3] for item in properties.integrator_items()}
+    assert items["MLT"] == 2 and items["MMLT"] == 10
+    labels = {cls.bl_label for cls in ui_render.classes if getattr(cls, "bl_parent_id", "") == "CANDELA_RENDER_PT_sampling"}
+    for name in ("MLT", "MMLT"):
+        specs = {spec["key"]: spec for spec in schema.integrator_params()[name]}
+        assert {"max_bounces", "bdpt_mis", "mlt_large_step", "mlt_sigma", "mlt_bootstrap", "mlt_chains"} <= set(specs)
+        assert specs["mlt_large_step"]["default"] == pytest.approx(0.3)
+        assert specs["mlt_large_step"]["min"] == 0.0 and specs["mlt_large_step"]["max"] == 1.0
+        assert specs["mlt_chains"]["min"] == 2
+        assert "Metropolis" in labels

@@ -143,7 +143,12 @@ RandomScene make_random_scene(uint64_t seed) {
     p.set("clip_start", double(1e-3f * scale));
     p.set("clip_end", double(1e3f * scale));
     const auto& registry = integrator_registry();
-    p.set("integrator", std::string(registry[size_t(r.integer(int(registry.size())))].name));
+    const std::string integrator = registry[size_t(r.integer(int(registry.size())))].name;
+    p.set("integrator", integrator);
+    if (integrator == "MLT" || integrator == "MMLT") {  // the defaults (10⁵ bootstrap paths) are for real frames
+        p.set("mlt_bootstrap", int64_t(1000));
+        p.set("mlt_chains", int64_t(16));
+    }
     return out;
 }
 

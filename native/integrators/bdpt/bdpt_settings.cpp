@@ -4,15 +4,19 @@
 
 namespace candela {
 
+ParamSpec BdptSettings::mis_spec() {
+    return enum_param("bdpt_mis", "Strategy Weights", "POWER",
+                      {{"BALANCE", "Balance", "Balance heuristic over all strategies (Veach 1997, eq. 10.9 with β = 1)"},
+                       {"POWER", "Power", "Power heuristic with exponent 2 over all strategies (Veach 1997, ch. 10)"}},
+                      "How the estimates of all (s, t) strategies of a path are weighted", "Bidirectional");
+}
+
 const std::vector<ParamSpec>& BdptSettings::specs() {
     static const std::vector<ParamSpec> specs = {
         max_bounces_spec(),
         rr_mode_spec(),
         rr_start_bounce_spec(),
-        enum_param("bdpt_mis", "Strategy Weights", "POWER",
-                   {{"BALANCE", "Balance", "Balance heuristic over all strategies (Veach 1997, eq. 10.9 with β = 1)"},
-                    {"POWER", "Power", "Power heuristic with exponent 2 over all strategies (Veach 1997, ch. 10)"}},
-                   "How the estimates of all (s, t) strategies of a path are weighted", "Bidirectional"),
+        mis_spec(),
         bool_param("bdpt_strategy_images", "Strategy Images", false,
                    "Also write, for every path depth up to Strategy Depth and every (s, t) strategy, its weighted and "
                    "unweighted contribution as render passes (BDPT d1 s1 t2, ...): which strategy carries which light",

@@ -22,6 +22,8 @@ struct BdptSettings {
 
     static BdptSettings from_params(const Params& params);
     static const std::vector<ParamSpec>& specs();
+    /// "bdpt_mis", shared with the Metropolis integrators that drive this sampler.
+    static ParamSpec mis_spec();
 };
 
 }  // namespace candela

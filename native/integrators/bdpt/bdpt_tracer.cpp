@@ -29,6 +29,53 @@ StrategyRecording& strategy_recording() {
     return recording;
 }
 
+namespace {
+
+/// The t = 1 strategy's unweighted splat, or the camera sample's own, handed on checked (non-finite or negative
+/// contributions are dropped and counted).
+template <class Emit>
+void emit_checked(const StrategyResult& r, PathStats& stats, Emit&& emit) {
+    if (is_black(r.L) || !(r.weight > 0.f)) return;
+    const Color weighted = r.L * r.weight;
+    if (!is_finite(weighted) || min_component(weighted) < 0.f) {
+        ++stats.nan_samples;
+        return;
+    }
+    emit(weighted, r);
+}
+
+/// Every strategy (s, t) of the subpaths in `w` (nz camera and ny light vertices), weighted, to `emit`; each
+/// evaluated strategy, unweighted and unchecked, to `record(result, s, t)` first (strategy images).
+struct NoRecord {
+    void operator()(const StrategyResult&, int, int) const {}
+};
+template <class Emit, class Record = NoRecord>
+void all_strategies(const BdptContext& c, Scratch& w, int nz, int ny, PathStats& stats, Emit&& emit,
+                    Record&& record = Record{}) {
+    const int max_depth = c.settings.max_bounces + 1;  // scattering vertices of a path: s + t − 2
+    for (int t = 1; t <= nz; ++t)
+        for (int s = 0; s <= ny; ++s) {
+            const int depth = s + t - 2;
+            // (1, 1), an emitter connected to the lens, is left to (0, 2), the camera ray that sees it: its weight
+            // would be tiny wherever the emitter is visible, and strategy_weight counts paths of two vertices as (0, 2)'s.
+            if (depth < 0 || depth > max_depth || (s == 0 && t == 1) || (s == 1 && t == 1)) continue;
+            const StrategyResult r =
+                evaluate_strategy(c, w.light, s, w.camera, t, w.camera_numbers, w.light_numbers, nullptr, stats);
+            record(r, s, t);
+            emit_checked(r, stats, emit);
+        }
+    // The area lights the camera subpath passed: strategies s = 0 ending on them.
+    for (const AreaLightHit& a : w.area_hits) {
+        const int t = a.segment + 1;
+        if (t - 2 > max_depth) continue;
+        const StrategyResult r = evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats);
+        record(r, 0, t);
+        emit_checked(r, stats, emit);
+    }
+}
+
+}  // namespace
+
 Color BdptTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov,
                      SplatSink sink) const {
     *alpha = 1.f;
@@ -38,39 +85,55 @@ Color BdptTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
     w.fit(c);
     const int nz = camera_subpath(c, camera_ray, sampler, w.camera, w.camera_numbers, w.area_hits, stats, alpha, aov);
     const int ny = light_subpath(c, sampler, w.light, w.light_numbers, stats);
-    const int max_depth = c.settings.max_bounces + 1;  // scattering vertices of a path: s + t − 2
     Color L(0.f);
     const StrategyRecording& rec = strategy_recording();
-    auto add = [&](const StrategyResult& r, int s, int t) {
+    auto record = [&](const StrategyResult& r, int s, int t) {
         if (rec.buffer && !is_black(r.L) && is_finite(r.L) && min_component(r.L) >= 0.f)
             rec.images->record(*rec.buffer, s, t, r.L, r.weight, r.raster, r.splat, sink.x, sink.y);
-        if (is_black(r.L) || !(r.weight > 0.f)) return;
-        const Color weighted = r.L * r.weight;
-        if (!is_finite(weighted) || min_component(weighted) < 0.f) {
-            ++stats.nan_samples;
-            return;
-        }
+    };
+    all_strategies(c, w, nz, ny, stats, [&](const Color& weighted, const StrategyResult& r) {
         if (r.splat) {
             if (sink.buffer) sink.buffer->add(r.raster, weighted, sink.replicate);
         } else {
             L += weighted;
         }
-    };
-    for (int t = 1; t <= nz; ++t)
-        for (int s = 0; s <= ny; ++s) {
-            const int depth = s + t - 2;
-            // (1, 1), an emitter connected to the lens, is left to (0, 2), the camera ray that sees it: its weight
-            // would be tiny wherever the emitter is visible, and strategy_weight counts paths of two vertices as (0, 2)'s.
-            if (depth < 0 || depth > max_depth || (s == 0 && t == 1) || (s == 1 && t == 1)) continue;
-            add(evaluate_strategy(c, w.light, s, w.camera, t, w.camera_numbers, w.light_numbers, nullptr, stats), s, t);
-        }
-    // The area lights the camera subpath passed: strategies s = 0 ending on them.
-    for (const AreaLightHit& a : w.area_hits) {
-        const int t = a.segment + 1;
-        if (t - 2 > max_depth) continue;
-        add(evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats), 0, t);
-    }
+    }, record);
     return L;
+}
+
+void BdptTracer::sample_all(const Ray& camera_ray, PrimarySampleSampler& u, PathStats& stats,
+                            std::vector<Contribution>& out) const {
+    thread_local Scratch scratch;
+    Scratch& w = scratch;
+    const BdptContext& c = m_context;
+    w.fit(c);
+    const int nz = camera_subpath(c, camera_ray, u, w.camera, w.camera_numbers, w.area_hits, stats, c.max_camera());
+    const int ny = light_subpath(c, u, w.light, w.light_numbers, stats, c.max_light());
+    all_strategies(c, w, nz, ny, stats, [&](const Color& weighted, const StrategyResult& r) {
+        out.push_back({weighted, r.splat, r.raster});
+    });
+}
+
+void BdptTracer::sample_strategy(const Ray& camera_ray, PrimarySampleSampler& u, int s, int t, PathStats& stats,
+                                 std::vector<Contribution>& out) const {
+    thread_local Scratch scratch;
+    Scratch& w = scratch;
+    const BdptContext& c = m_context;
+    w.fit(c);
+    if (s + t - 2 > c.settings.max_bounces + 1 || t < 1 || s < 0 || (t == 1 && s <= 1)) return;
+    const int nz = camera_subpath(c, camera_ray, u, w.camera, w.camera_numbers, w.area_hits, stats, t);
+    // s ≤ 1 needs no light subpath (s = 1 samples its emitter point from the camera vertex's numbers).
+    const int ny = s >= 2 ? light_subpath(c, u, w.light, w.light_numbers, stats, s) : s;
+    if (ny < s) return;
+    auto emit = [&](const Color& weighted, const StrategyResult& r) { out.push_back({weighted, r.splat, r.raster}); };
+    if (nz == t)
+        emit_checked(evaluate_strategy(c, w.light, s, w.camera, t, w.camera_numbers, w.light_numbers, nullptr, stats),
+                     stats, emit);
+    if (s == 0)
+        for (const AreaLightHit& a : w.area_hits)
+            if (a.segment + 1 == t)
+                emit_checked(evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats),
+                             stats, emit);
 }
 
 }  // namespace candela

@@ -2,6 +2,7 @@
 
 #include "integrators/bdpt/strategy.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -35,7 +36,7 @@ void make_surface(PathVertex& v, const Scene& scene, const SurfaceHit& hit, cons
 template <class S>
 int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVertex>& z,
                 std::vector<VertexNumbers>& numbers, std::vector<AreaLightHit>& area_hits, PathStats& stats, float* alpha,
-                AovSample* aov) {
+                AovSample* aov, int limit) {
     const Scene& scene = c.scene;
     const BdptSettings& cfg = c.settings;
     const LightSet& lights = scene.lights();
@@ -52,7 +53,7 @@ int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVerte
     float eta_scale = 1.f;
     PrimitiveRef from;
     int n = 1;
-    for (int bounce = 0; n < c.max_camera(); ++bounce) {
+    for (int bounce = 0; n < limit; ++bounce) {
         SurfaceHit hit;
         ++stats.rays;
         const bool found = scene.intersect(ray, &hit, from);
@@ -106,6 +107,7 @@ int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVerte
         VertexNumbers& num = numbers[n - 1];
         num.u_select = u.light_select;
         num.u_point = u.light;
+        if (n >= limit) return n;  // a subpath of `limit` vertices (its last one keeps its connection numbers)
         const VertexBsdf::Sample s = v.bsdf->sample_camera(v.w, u.bsdf, u.lobe);
         if (!s.valid()) return n;
         v.delta = s.delta;
@@ -127,7 +129,7 @@ int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVerte
 
 template <class S>
 int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std::vector<VertexNumbers>& numbers,
-               PathStats& stats) {
+               PathStats& stats, int limit) {
     const Scene& scene = c.scene;
     const BdptSettings& cfg = c.settings;
     const int dim = c.light_dim_bounce();
@@ -153,13 +155,13 @@ int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std
     y0.pdf_fwd = pmf * (es.infinite ? es.pdf_dir : es.pdf_pos);
     y0.beta = Color(1.f / (pmf * (es.infinite ? es.pdf_dir : es.pdf_pos)));
     Color beta = es.weight() / pmf;
-    if (!is_finite(beta)) return 1;
+    if (!is_finite(beta) || limit <= 1) return 1;
     Ray ray{(es.delta_pos || es.infinite) ? es.p : offset_ray_origin(es.p, es.n), es.d, 0.f, k_inf, k_ray_all};
     const Densities d(c);
     float beta_ref = 0.f, eta_scale = 1.f;
     PrimitiveRef from;
     int n = 1;
-    for (int depth = 1; n < c.max_light(); ++depth) {
+    for (int depth = 1; n < limit; ++depth) {
         SurfaceHit hit;
         ++stats.rays;
         if (!scene.intersect(ray, &hit, from)) return n;
@@ -171,7 +173,7 @@ int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std
         if (n >= 2) y[n - 2].pdf_rev = y[n - 1].delta ? 0.f : d.camera_side(y[n - 1], &v, y[n - 2]);
         if (depth == 1) beta_ref = max_component(beta);
         ++n;
-        const bool last = n >= c.max_light();
+        const bool last = n >= limit;
         const bool roulette_here = !last && cfg.rr_mode != RouletteMode::Off && depth >= cfg.rr_start_bounce;
         const BounceSample u = draw_bounce(sampler, dim + depth,
                                            k_need_light | k_need_lobe | (roulette_here ? k_need_roulette : 0u));
@@ -203,12 +205,28 @@ int camera_subpath(const BdptContext& c, const Ray& ray, Sampler& sampler, std::
                    std::vector<VertexNumbers>& numbers, std::vector<AreaLightHit>& area_hits, PathStats& stats,
                    float* alpha, AovSample* aov) {
     area_hits.clear();
-    return std::visit([&](auto& s) { return camera_walk(c, ray, s, z, numbers, area_hits, stats, alpha, aov); }, sampler);
+    return std::visit([&](auto& s) {
+        return camera_walk(c, ray, s, z, numbers, area_hits, stats, alpha, aov, c.max_camera());
+    }, sampler);
 }
 
 int light_subpath(const BdptContext& c, Sampler& sampler, std::vector<PathVertex>& y,
                   std::vector<VertexNumbers>& numbers, PathStats& stats) {
-    return std::visit([&](auto& s) { return light_walk(c, s, y, numbers, stats); }, sampler);
+    return std::visit([&](auto& s) { return light_walk(c, s, y, numbers, stats, c.max_light()); }, sampler);
+}
+
+int camera_subpath(const BdptContext& c, const Ray& ray, PrimarySampleSampler& sampler, std::vector<PathVertex>& z,
+                   std::vector<VertexNumbers>& numbers, std::vector<AreaLightHit>& area_hits, PathStats& stats,
+                   int max_vertices) {
+    area_hits.clear();
+    float alpha = 1.f;
+    return camera_walk(c, ray, sampler, z, numbers, area_hits, stats, &alpha, nullptr,
+                       std::min(max_vertices, c.max_camera()));
+}
+
+int light_subpath(const BdptContext& c, PrimarySampleSampler& sampler, std::vector<PathVertex>& y,
+                  std::vector<VertexNumbers>& numbers, PathStats& stats, int max_vertices) {
+    return light_walk(c, sampler, y, numbers, stats, std::min(max_vertices, c.max_light()));
 }
 
 }  // namespace candela

@@ -13,6 +13,7 @@
 #include "integrators/bdpt/path_vertex.h"
 #include "integrators/render_context.h"
 #include "lights/emitter_set.h"
+#include "sampling/primary_sample_sampler.h"
 #include "sampling/sampler.h"
 
 namespace candela {
@@ -53,5 +54,14 @@ int camera_subpath(const BdptContext& c, const Ray& ray, Sampler& sampler, std::
 /// Fills y[0 .. n) with a light subpath, returns n (0: no emitter could be sampled).
 int light_subpath(const BdptContext& c, Sampler& sampler, std::vector<PathVertex>& y, std::vector<VertexNumbers>& numbers,
                   PathStats& stats);
+
+/// The same walks driven by Metropolis' primary-sample state (integrators/mlt/), with at most `max_vertices`
+/// vertices (multiplexed MLT builds a subpath of exactly the length its strategy needs). Its last vertex has its
+/// connection numbers, not a sampled continuation. No film transparency, holdout alpha or data passes.
+int camera_subpath(const BdptContext& c, const Ray& ray, PrimarySampleSampler& sampler, std::vector<PathVertex>& z,
+                   std::vector<VertexNumbers>& numbers, std::vector<AreaLightHit>& area_hits, PathStats& stats,
+                   int max_vertices);
+int light_subpath(const BdptContext& c, PrimarySampleSampler& sampler, std::vector<PathVertex>& y,
+                  std::vector<VertexNumbers>& numbers, PathStats& stats, int max_vertices);
 
 }  // namespace candela

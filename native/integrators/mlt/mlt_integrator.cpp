@@ -1,0 +1,207 @@
+#include "integrators/mlt/mlt_integrator.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <string>
+
+#include "core/parallel.h"
+#include "core/parallel_ordered.h"
+#include "integrators/mlt/markov_chain.h"
+#include "integrators/mlt/mlt_settings.h"
+#include "sampling/distribution_1d.h"
+
+namespace candela {
+
+namespace {
+
+uint64_t state_key(uint64_t seed, uint64_t index, int depth) {
+    return hash_values(seed ^ 0x6d6c74626f6f74ULL, index, uint64_t(depth + 1));
+}
+uint64_t chain_key(uint64_t seed, uint64_t chain) { return hash_values(seed ^ 0x6d6c74636861ULL, chain, 7u); }
+
+/// The bootstrap: n independent states per depth (PSSMLT: one "depth", −1), their importances in index order
+/// (entry i·D + d for path i at depth d), so b and the resampling are the same for any thread count.
+struct Bootstrap {
+    std::vector<float> importance;
+    int depths = 1;  // D
+    bool multiplexed = false;
+    int depth_of(size_t entry) const { return multiplexed ? int(entry % size_t(depths)) : -1; }
+    uint64_t index_of(size_t entry) const { return uint64_t(entry / size_t(depths)); }
+};
+
+Bootstrap run_bootstrap(const PathSpace& space, const MltSettings& s, bool multiplexed, uint64_t seed, int threads,
+                        RenderCounters& counters, const CancelToken* cancel) {
+    Bootstrap boot;
+    boot.multiplexed = multiplexed;
+    boot.depths = multiplexed ? space.max_depth() + 1 : 1;
+    const size_t n = size_t(s.bootstrap) * size_t(boot.depths);
+    boot.importance.assign(n, 0.f);
+    constexpr size_t k_chunk = 1024;
+    counters.stage.begin("Bootstrap paths", int64_t(n));
+    std::atomic<int64_t> done{0};
+    parallel_for(
+        threads, (n + k_chunk - 1) / k_chunk,
+        [&](size_t chunk) {
+            PrimarySampleSampler u(s.sigma, s.large_step);
+            MltSample sample;
+            PathStats stats;
+            for (size_t e = chunk * k_chunk; e < std::min(n, (chunk + 1) * k_chunk); ++e) {
+                bootstrap_sample(space, state_key(seed, boot.index_of(e), boot.depth_of(e)), boot.depth_of(e), u,
+                                 stats, sample);
+                boot.importance[e] = sample.importance;
+            }
+            stats.flush(counters);
+            counters.stage.set_done(std::min(int64_t(n), done.fetch_add(int64_t(k_chunk)) + int64_t(k_chunk)));
+        },
+        cancel);
+    counters.stage.end();
+    return boot;
+}
+
+MltBootstrap summarise(const Bootstrap& boot, int bootstrap_paths) {
+    MltBootstrap out;
+    out.b_depth.assign(size_t(boot.depths), 0.0);
+    for (size_t e = 0; e < boot.importance.size(); ++e) out.b_depth[e % size_t(boot.depths)] += boot.importance[e];
+    for (double& v : out.b_depth) {
+        v /= double(bootstrap_paths);
+        out.b += v;
+    }
+    return out;
+}
+
+class MltIntegrator final : public Integrator {
+public:
+    MltIntegrator(const Params& params, bool multiplexed)
+        : m_settings(MltSettings::from_params(params, multiplexed)), m_multiplexed(multiplexed) {}
+
+    void render(const Scene& scene, Film& film, RenderContext& ctx) override {
+        const char* name = m_multiplexed ? "MMLT" : "MLT";
+        const EmitterSet emitters(scene.lights(), scene.bounds());
+        const PixelSampling& ps = m_settings.bdpt.pixel;
+        if (ps.film_transparent) ctx.log(std::string(name) + ": the film is rendered opaque (no transparent film)");
+        if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
+            ctx.log(std::string(name) + ": objects hidden from diffuse, glossy or transmission rays are visible to "
+                    "light subpaths and connections (only camera and shadow visibility are honoured)");
+        const PathSpace space(scene, m_settings.bdpt, emitters);
+        const Bootstrap boot = run_bootstrap(space, m_settings, m_multiplexed, ps.seed, ctx.threads, ctx.counters, &ctx.cancel);
+        if (ctx.cancel.cancelled()) {  // cancelled during the bootstrap: no chain, an empty image
+            ctx.counters.work_total = ps.samples;
+            ctx.counters.stop_reason = int(StopReason::Cancelled);
+            return;
+        }
+        const MltBootstrap summary = summarise(boot, m_settings.bootstrap);
+        const double b = summary.b;
+
+        // The chains' starting states: bootstrap entries resampled ∝ I (each chain its own uniform).
+        std::vector<MarkovChain> chains;
+        if (b > 0.0) {
+            const Distribution1D pick(boot.importance);
+            PathStats stats;
+            chains.reserve(size_t(m_settings.chains));
+            for (int c = 0; c < m_settings.chains; ++c) {
+                Pcg32 rng(mix64(chain_key(ps.seed, uint64_t(c))), 0x7069636bULL);
+                const size_t e = pick.sample_discrete(rng.next_float());
+                chains.emplace_back(space, m_settings.sigma, m_settings.large_step,
+                                    state_key(ps.seed, boot.index_of(e), boot.depth_of(e)), boot.depth_of(e),
+                                    chain_key(ps.seed, uint64_t(c)), stats);
+            }
+            stats.flush(ctx.counters);
+        } else {
+            ctx.log(std::string(name) + ": no bootstrap path carries light (b = 0): the image is black");
+        }
+
+        const double frame_pixels = double(scene.camera().full_width()) * scene.camera().full_height();
+        const uint64_t n_chains = uint64_t(m_settings.chains);
+        // Mutations with global index j in [0, x) that chain c makes (j ≡ c mod the chain count).
+        auto share = [&](uint64_t x, uint64_t c) { return x > c ? (x - c - 1) / n_chains + 1 : 0; };
+        struct ChainPass {
+            SplatBuffer buffer;
+            int64_t done = 0;
+            ChainCounts counts;
+        };
+        ChainCounts total;
+        ProgressivePlan plan;
+        plan.total = ps.samples;
+        plan.max_pass = 16;
+        plan.time_limit = ps.time_limit;
+        plan.noise_threshold = ps.noise_threshold;
+        run_progressive(
+            ctx, plan,
+            [&](int64_t begin, int64_t end) {
+                const uint64_t lo = uint64_t(double(begin) * frame_pixels), hi = uint64_t(double(end) * frame_pixels);
+                if (chains.empty()) {  // black: count the mutations all the same (an opaque, finished film)
+                    double samples[k_noise_replicates] = {};
+                    samples[0] = double(hi - lo) / space.raster_area();
+                    film.add_splats(SplatBuffer(), ps.filter, samples);
+                    return;
+                }
+                parallel_ordered(
+                    ctx.threads, chains.size(), size_t(2 * resolve_thread_count(ctx.threads)),
+                    [&](size_t c) {
+                        ChainPass out;
+                        PathStats stats;
+                        const int64_t n = int64_t(share(hi, c) - share(lo, c));
+                        out.done = chains[c].run(n, b, uint32_t(c % k_noise_replicates), out.buffer, stats, out.counts,
+                                                 &ctx.cancel);
+                        stats.flush(ctx.counters);
+                        return out;
+                    },
+                    [&](size_t c, ChainPass&& pass) {
+                        double samples[k_noise_replicates] = {};
+                        samples[c % k_noise_replicates] = double(pass.done) / space.raster_area();
+                        film.add_splats(pass.buffer, ps.filter, samples);
+                        total.accepted += pass.counts.accepted;
+                        total.rejected += pass.counts.rejected;
+                        total.large_steps += pass.counts.large_steps;
+                    },
+                    &ctx.cancel);
+            },
+            [&] { return film.noise_estimate(); });
+        const uint64_t mutations = total.accepted + total.rejected;
+        char line[256];
+        std::snprintf(line, sizeof line, "%s: b = %.6g from %d bootstrap paths%s, %d chains, %llu mutations, %.1f %% accepted "
+                      "(%llu accepted, %llu rejected, %.1f %% large steps)",
+                      name, b, m_settings.bootstrap, m_multiplexed ? " per depth" : "", m_settings.chains,
+                      (unsigned long long)mutations, mutations ? 100.0 * double(total.accepted) / double(mutations) : 0.0,
+                      (unsigned long long)total.accepted, (unsigned long long)total.rejected,
+                      mutations ? 100.0 * double(total.large_steps) / double(mutations) : 0.0);
+        ctx.log(line);
+    }
+    WorkBudget budget() const override { return {m_settings.bdpt.pixel.samples, "mutation"}; }
+
+private:
+    MltSettings m_settings;
+    bool m_multiplexed;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_mlt_integrator(const Params& params) {
+    return std::make_unique<MltIntegrator>(params, false);
+}
+std::unique_ptr<Integrator> make_mmlt_integrator(const Params& params) {
+    return std::make_unique<MltIntegrator>(params, true);
+}
+
+double mlt_integrator_memory(const Params& params, double film_pixels) {
+    const double chains = double(params.get<int64_t>("mlt_chains", 1000));
+    const double bootstrap = double(params.get<int64_t>("mlt_bootstrap", 100000));
+    const double depths = params.get<std::string>("integrator", "MLT") == "MMLT"
+                              ? double(params.get<int64_t>("max_bounces", 12) + 2) : 1.0;
+    // The film's splat accumulators, the bootstrap's importances (and their sampling tables), each chain's state
+    // (primary samples with backups, two evaluated samples: ~8 KB), the splat buffers of the chains in flight.
+    return film_pixels * double(sizeof(SplatAccum)) + bootstrap * depths * 4.0 * sizeof(float) + chains * 8192.0 +
+           64.0 * 16.0 * film_pixels / std::max(1.0, chains) * double(sizeof(SplatBuffer::Entry));
+}
+
+MltBootstrap mlt_bootstrap(const Scene& scene, const Params& params, int threads) {
+    const bool multiplexed = params.get<std::string>("integrator", "MLT") == "MMLT";
+    const MltSettings s = MltSettings::from_params(params, multiplexed);
+    const EmitterSet emitters(scene.lights(), scene.bounds());
+    const PathSpace space(scene, s.bdpt, emitters);
+    RenderCounters counters;
+    return summarise(run_bootstrap(space, s, multiplexed, s.bdpt.pixel.seed, threads, counters, nullptr), s.bootstrap);
+}
+
+}  // namespace candela

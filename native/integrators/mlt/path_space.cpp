@@ -1,0 +1,51 @@
+#include "integrators/mlt/path_space.h"
+
+#include <algorithm>
+
+namespace candela {
+
+PathSpace::PathSpace(const Scene& scene, const BdptSettings& settings, const EmitterSet& emitters)
+    : m_tracer(scene, settings, emitters), m_camera(scene.camera()), m_margin(m_tracer.context().camera_margin()) {
+    const double w = m_camera.full_width(), h = m_camera.full_height();
+    m_frame_area = w * h;
+    m_area = (w + 2.0 * m_margin) * (h + 2.0 * m_margin);
+}
+
+uint32_t PathSpace::strategy_dim() const {
+    const BdptContext& c = m_tracer.context();
+    // The light subpath's bounces start at light_dim_bounce() and take at most max_light() of them.
+    return dimension_index(Dim::LightSelect, c.light_dim_bounce() + c.max_light() + 1);
+}
+
+void PathSpace::evaluate(PrimarySampleSampler& u, int depth, PathStats& stats, MltSample& out) const {
+    out.clear();
+    const Vec2 uf = u.sample_2d(dimension_index(Dim::Filter));
+    const float w = float(m_camera.full_width()), h = float(m_camera.full_height());
+    const Vec2 raster{-m_margin + uf.x * (w + 2.f * m_margin), -m_margin + uf.y * (h + 2.f * m_margin)};
+    const Vec2 u_lens = m_camera.has_aperture() ? u.sample_2d(dimension_index(Dim::Lens)) : Vec2{0.5f, 0.5f};
+    const Ray ray = m_camera.generate_ray(raster, u_lens);
+    ++stats.paths;
+    float scale = 1.f;
+    if (depth < 0) {
+        m_tracer.sample_all(ray, u, stats, out.contributions);
+    } else {
+        // Strategy s of the k + 2 with s + t − 2 = k (k = 0: (0, 2) alone; the tracer leaves (1, 1) to it).
+        const int strategies = depth == 0 ? 1 : depth + 2;
+        const int s = depth == 0 ? 0 : std::min(int(u.sample_1d(strategy_dim()) * float(strategies)), strategies - 1);
+        const int t = depth + 2 - s;
+        m_tracer.sample_strategy(ray, u, s, t, stats, out.contributions);
+        scale = float(strategies);
+    }
+    const float splat_scale = float(m_frame_area / m_area);
+    Color sum(0.f);
+    for (BdptTracer::Contribution& c : out.contributions) {
+        c.L *= c.splat ? scale * splat_scale : scale;
+        if (!c.splat) c.raster = raster;
+        sum += c.L;
+    }
+    const float I = luminance(sum);
+    out.importance = is_finite(sum) && I > 0.f ? I : 0.f;
+    if (!(out.importance > 0.f)) out.contributions.clear();
+}
+
+}  // namespace candela
