@@ -14,7 +14,7 @@ constexpr float k_background_depth = 1e10f;  // Cycles' Depth where nothing was 
 
 const std::vector<std::pair<std::string, int>>& AovFilm::pass_specs() {
     static const std::vector<std::pair<std::string, int>> specs = {
-        {"Depth", 1}, {"Normal", 3}, {"Albedo", 3}, {"IndexOB", 1}};
+        {"Depth", 1}, {"Normal", 3}, {"Albedo", 3}, {"IndexOB", 1}, {"IC Records", 1}};
     return specs;
 }
 
@@ -43,7 +43,9 @@ AovFilm::AovFilm(const Film& film, const std::vector<std::string>& passes)
         }
         if (!enabled(name)) m_enabled.push_back(name);
     }
-    if (!m_enabled.empty()) m_pixels.resize(size_t(m_width) * m_height);
+    // Per-sample accumulation only for the passes accumulated from camera samples.
+    if (std::any_of(m_enabled.begin(), m_enabled.end(), [](const std::string& n) { return !integrator_pass(n); }))
+        m_pixels.resize(size_t(m_width) * m_height);
     m_tile_locks = std::make_unique<std::mutex[]>(m_tiles.size());
 }
 
@@ -73,12 +75,36 @@ void AovFilm::add_tile(size_t tile_index, const std::vector<AovAccum>& tile_pixe
         }
 }
 
+bool AovFilm::integrator_pass(const std::string& name) { return name == "IC Records"; }
+
+void AovFilm::set_pass(const std::string& name, std::vector<float> values) {
+    if (!enabled(name) || !integrator_pass(name)) return;
+    int ch = 0;
+    for (const auto& s : pass_specs())
+        if (s.first == name) ch = s.second;
+    if (values.size() != size_t(m_width) * m_height * size_t(ch))
+        throw InternalError("integrator pass '" + name + "' has the wrong size");
+    std::lock_guard<std::mutex> lock(m_integrator_lock);
+    for (auto& [n, v] : m_integrator_passes)
+        if (n == name) {
+            v = std::move(values);
+            return;
+        }
+    m_integrator_passes.emplace_back(name, std::move(values));
+}
+
 std::vector<float> AovFilm::get(const std::string& name, int* channels) const {
     *channels = 0;
     if (!enabled(name)) return {};
     for (const auto& s : pass_specs())
         if (s.first == name) *channels = s.second;
     const int ch = *channels;
+    if (integrator_pass(name)) {
+        std::lock_guard<std::mutex> lock(m_integrator_lock);
+        for (const auto& [n, v] : m_integrator_passes)
+            if (n == name) return v;
+        return std::vector<float>(size_t(m_width) * m_height * ch, 0.f);  // not written (yet): zeros
+    }
     std::vector<float> out(size_t(m_width) * m_height * ch, 0.f);
     for (size_t i = 0; i < m_tiles.size(); ++i) {
         const Tile& t = m_tiles[i];
