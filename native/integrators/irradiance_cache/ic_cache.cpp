@@ -10,7 +10,7 @@ namespace candela {
 IcCache::IcCache(const SceneSphere& bounds, const IcCacheRules& rules)
     : m_rules(rules), m_octree(bounds.center, std::max(bounds.radius, 1e-6f) * 1.001f) {}
 
-bool IcCache::interpolate(const Vec3& x, const Vec3& n, Color* E, int* records_used) const {
+bool IcCache::interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E, int* records_used) const {
     // Σ w_i E_i(x, n) / Σ w_i over the usable records, summed in double in the octree's order (fixed by the
     // insertions), so the value does not depend on the thread that asks.
     double sum[3] = {0, 0, 0}, wsum = 0.0;
@@ -26,13 +26,13 @@ bool IcCache::interpolate(const Vec3& x, const Vec3& n, Color* E, int* records_u
             return;
         }
         const double w = 1.0 / double(err);
-        const Color e = ic_extrapolate(r, x, n, m_rules.gradients);
+        const Color e = ic_extrapolate(r, x, n, gradients);
         for (int c = 0; c < 3; ++c) sum[c] += w * double(e[c]);
         wsum += w;
     });
     if (records_used) *records_used = used;
     if (exact) {
-        *E = ic_extrapolate(*exact, x, n, m_rules.gradients);
+        *E = ic_extrapolate(*exact, x, n, gradients);
         return true;
     }
     if (!(wsum > 0.0)) return false;
@@ -82,10 +82,10 @@ bool IcCache::insert(IcRecord record) {
     return true;
 }
 
-std::vector<uint32_t> IcCache::records_containing(const Vec3& x) const {
+std::vector<uint32_t> IcCache::records_near(const Vec3& x, float range) const {
     std::vector<uint32_t> out;
-    m_octree.for_each_near(x, 0.f, [&](uint32_t i) {
-        if (length(x - m_records[i].p) < validity_radius(m_records[i])) out.push_back(i);
+    m_octree.for_each_near(x, range, [&](uint32_t i) {
+        if (length(x - m_records[i].p) < validity_radius(m_records[i]) + range) out.push_back(i);
     });
     std::sort(out.begin(), out.end());
     return out;

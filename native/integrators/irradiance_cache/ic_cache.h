@@ -35,7 +35,11 @@ public:
 
     /// The interpolated irradiance at (x, n) from the usable records (ε_i < a, not in front); false (E untouched)
     /// if there is none. `records_used`, if given, receives how many were.
-    bool interpolate(const Vec3& x, const Vec3& n, Color* E, int* records_used = nullptr) const;
+    bool interpolate(const Vec3& x, const Vec3& n, Color* E, int* records_used = nullptr) const {
+        return interpolate(x, n, m_rules.gradients, E, records_used);
+    }
+    /// The same with or without the gradient terms (whatever the rules say: tests compare both on one record set).
+    bool interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E, int* records_used = nullptr) const;
     /// Whether some record is usable at (x, n).
     bool covered(const Vec3& x, const Vec3& n) const;
 
@@ -47,8 +51,11 @@ public:
     size_t size() const { return m_records.size(); }
     bool full() const { return m_records.size() >= m_rules.capacity; }
     const IcCacheRules& rules() const { return m_rules; }
-    /// Every record whose validity sphere contains x (the octree's answer, for tests against brute force).
-    std::vector<uint32_t> records_containing(const Vec3& x) const;
+    /// Every record whose validity sphere contains x, in index order (the octree's answer, for tests against brute
+    /// force).
+    std::vector<uint32_t> records_containing(const Vec3& x) const { return records_near(x, 0.f); }
+    /// Every record whose validity sphere comes within `range` of x, in index order.
+    std::vector<uint32_t> records_near(const Vec3& x, float range) const;
 
 private:
     float validity_radius(const IcRecord& r) const { return m_rules.a * r.R; }

@@ -91,4 +91,36 @@ GatherEstimate estimate_gather(const HemisphereSamples& s) {
     return g;
 }
 
+IcRecord record_from_gather(GatherEstimate est, const Vec3& p, const Frame& frame, const RecordRules& rules) {
+    gradients_to_world(frame, est);
+    IcRecord rec;
+    rec.p = p;
+    rec.n = frame.n;
+    rec.E = est.E;
+    for (int c = 0; c < 3; ++c) {
+        rec.grad_r[c] = est.grad_r[c];
+        rec.grad_t[c] = est.grad_t[c];
+    }
+    float R = std::fmin(est.R, rules.max_R);
+    // The gradient limit (Křivánek et al.): over the validity radius a·R the translational term may change E by at
+    // most a·E. Near a concave edge a gather ray meets the other face at a tiny distance and Ward & Heckbert's
+    // 1/min(r) makes the gradient large and noisy; extrapolated over a radius set by the other rays it would make
+    // bright or dark blotches.
+    const Vec3 g_lum = rec.grad_t[0] * 0.2126f + rec.grad_t[1] * 0.7152f + rec.grad_t[2] * 0.0722f;
+    const float g = length(g_lum), e = luminance(rec.E);
+    if (rules.gradients && g > 0.f) R = std::fmin(R, e / g);
+    rec.R_min = 0.f;
+    if (rules.footprint > 0.f && std::isfinite(rules.footprint)) {
+        rec.R_min = rules.min_spacing * rules.footprint / rules.a;
+        R = std::fmin(std::fmax(R, rec.R_min), rules.max_spacing * rules.footprint / rules.a);
+    }
+    // Where the minimum spacing keeps R above the limit, the gradient is scaled down to it instead.
+    if (rules.gradients && g * R > e) {
+        const float scale = g > 0.f && R > 0.f ? e / (g * R) : 0.f;
+        for (int c = 0; c < 3; ++c) rec.grad_t[c] *= scale;
+    }
+    rec.R = R;
+    return rec;
+}
+
 }  // namespace candela

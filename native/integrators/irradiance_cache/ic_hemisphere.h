@@ -25,6 +25,7 @@
 
 #include "core/frame.h"
 #include "core/vec.h"
+#include "integrators/irradiance_cache/ic_record.h"
 
 namespace candela {
 
@@ -54,6 +55,23 @@ struct GatherEstimate {
     Vec3 grad_r[3], grad_t[3];
 };
 GatherEstimate estimate_gather(const HemisphereSamples& s);
+
+/// How a gather becomes a record: Ward's a, whether gradients are used (then the gradient limit applies), the world
+/// size of a pixel at the record (0: no spacing clamps) and the clamps in pixels, and the largest R (the scene's
+/// diameter: R is ∞ when every ray escaped).
+struct RecordRules {
+    float a = 0.15f;
+    bool gradients = true;
+    float footprint = 0.f;
+    float min_spacing = 0.f, max_spacing = 0.f;
+    float max_R = 1e30f;
+};
+
+/// The record at p (frame: its normal) from a gather estimate in local coordinates (ic_record.h; the R rules in
+/// docs/irradiance_cache.md): R = the harmonic mean distance (≤ max_R); with gradients, the gradient limit
+/// R ≤ E/|∇_t E| (luminance); the validity radius a·R clamped to [min, max] × footprint; and where the minimum
+/// keeps R above the gradient limit, ∇_t E scaled down to it.
+IcRecord record_from_gather(GatherEstimate est, const Vec3& p, const Frame& frame, const RecordRules& rules);
 
 /// The same gradients in world space.
 inline void gradients_to_world(const Frame& f, GatherEstimate& g) {

@@ -227,6 +227,7 @@ Color IcTracer::Li(const Ray& camera_ray, const TracedHit& first, Sampler& sampl
 template <class ConcreteSampler>
 void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats, Color& L, float* alpha,
                             AovSample* aov, const TracedHit* first) const {
+    if (m_probe && m_probe->on_camera_path) m_probe->on_camera_path();
     PathState st;
     st.rules = &m_rules;  // a camera ray: emission counts with weight 1 (origin.specular)
     const int px = int(sampler.pixel_x()), py = int(sampler.pixel_y());
@@ -334,39 +335,14 @@ IcRecord IcTracer::make_record(const SurfaceHit& hit, const SurfaceVertex& v, fl
             const Ray ray{spawn.origin(cos_g > 0.f), wi, 0.f, k_inf, k_ray_diffuse};
             hs.L[i] = trace_gather(ray, start, hash_combine(key, i + (uint64_t(1) << 40)), stats, &hs.r[i]);
         }
-    GatherEstimate est = estimate_gather(hs);
-    gradients_to_world(v.frame, est);
-    IcRecord rec;
-    rec.p = hit.p;
-    rec.n = v.frame.n;
-    rec.E = est.E;
-    for (int c = 0; c < 3; ++c) {
-        rec.grad_r[c] = est.grad_r[c];
-        rec.grad_t[c] = est.grad_t[c];
-    }
-    // R: the harmonic mean distance, at most the scene's diameter (every ray escaped: R = ∞), then the validity
-    // radius a·R clamped to [min, max] pixel footprints on the surface.
-    const float a = m_settings.error;
-    float R = std::fmin(est.R, 2.f * m_scene.bounds().radius);
-    // The gradient limit (Křivánek et al.): R_i ≤ E_i/|∇_t E_i| (on luminance), so that over the validity radius
-    // a·R_i the translational term changes E by at most a·E. Near a concave edge a gather ray meets the other face
-    // at a tiny distance and Ward & Heckbert's 1/min(r) makes the gradient large and noisy; extrapolated over a
-    // radius set by the other rays it would make bright or dark blotches.
-    const Vec3 g_lum = rec.grad_t[0] * 0.2126f + rec.grad_t[1] * 0.7152f + rec.grad_t[2] * 0.0722f;
-    const float g = length(g_lum), e = luminance(rec.E);
-    if (m_settings.gradients && g > 0.f) R = std::fmin(R, e / g);
-    rec.R_min = 0.f;
-    if (footprint > 0.f && std::isfinite(footprint)) {
-        rec.R_min = m_settings.min_spacing * footprint / a;
-        R = std::fmin(std::fmax(R, rec.R_min), m_settings.max_spacing * footprint / a);
-    }
-    // Where the minimum spacing keeps R above the limit, the gradient is scaled down to it instead.
-    if (m_settings.gradients && g * R > e) {
-        const float scale = g > 0.f ? e / (g * R) : 0.f;
-        for (int c = 0; c < 3; ++c) rec.grad_t[c] *= scale;
-    }
-    rec.R = R;
-    return rec;
+    RecordRules rules;
+    rules.a = m_settings.error;
+    rules.gradients = m_settings.gradients;
+    rules.footprint = footprint;
+    rules.min_spacing = m_settings.min_spacing;
+    rules.max_spacing = m_settings.max_spacing;
+    rules.max_R = 2.f * m_scene.bounds().radius;
+    return record_from_gather(estimate_gather(hs), hit.p, v.frame, rules);
 }
 
 // ---------------------------------------------------------------------------------------------------------------

@@ -44,9 +44,10 @@ namespace candela {
 /// Which part of the render a gather runs in (for tests that cancel in each: IcProbe).
 enum class IcStage { Prepass, Render };
 
-/// Test hook: called before every gather ray is traced (from worker threads).
+/// Test hooks, called from worker threads: before every gather ray is traced, and before every camera path.
 struct IcProbe {
     std::function<void(IcStage)> on_gather_ray;
+    std::function<void()> on_camera_path;
 };
 
 /// The world size of one pixel at distance t along a camera path (the image centre's pixel, pinhole): the unit of
