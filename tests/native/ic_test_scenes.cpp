@@ -16,8 +16,9 @@ void add_quad(MeshBuilder& b, const std::vector<Vec3>& q, uint32_t material) {
 
 }  // namespace
 
-SceneArrays cornell_box_arrays() {
+SceneArrays cornell_box_arrays(Color world) {
     MeshBuilder b;
+    if (!is_black(world)) b.world_color = {world.x, world.y, world.z};
     const uint32_t white = b.add_material(Color(0.725f, 0.71f, 0.68f), Color(0.f));
     const uint32_t red = b.add_material(Color(0.63f, 0.065f, 0.05f), Color(0.f));
     const uint32_t green = b.add_material(Color(0.14f, 0.45f, 0.091f), Color(0.f));

@@ -9,8 +9,9 @@ namespace candela::test {
 
 /// The Cornell box (the official data, as examples/cornell_box.py builds it: metres, Z up, the camera at
 /// (0, −0.8, 0.273) looking +Y with a 35 mm lens on a 25 mm sensor; Bitterli's reflectances, Lambertian; the light an
-/// emissive quad of radiance (17, 12, 4) 0.5 mm below the ceiling).
-SceneArrays cornell_box_arrays();
+/// emissive quad of radiance (17, 12, 4) 0.5 mm below the ceiling). `world`: the constant world's radiance, seen
+/// through the open front (a light no next-event estimation samples).
+SceneArrays cornell_box_arrays(Color world = Color(0.f));
 /// Params for a w × h render of it (box filter).
 Params cornell_box_params(int w, int h, int samples, const std::string& integrator);
 

@@ -87,7 +87,10 @@ float IcTracer::emitter_pdf(const PathState& st, int32_t light, const Vec3& d, f
 }
 
 void IcTracer::add_emission(const PathState& st, const Color& Le, float light_pdf, Color& L) const {
-    L += st.beta_emit * Le * emission_weight(*st.rules, st.origin, light_pdf);
+    // A light next-event estimation samples (light_pdf > 0) is direct light of the whole BSDF at the ray's origin,
+    // MIS-weighted; any other emitter (a constant world, a never-selected triangle) is indirect light to the gathers
+    // there, which already hold the Lambertian lobes' share of it: the ray counts only the rest's (β).
+    L += (light_pdf > 0.f ? st.beta_emit : st.beta) * Le * emission_weight(*st.rules, st.origin, light_pdf);
 }
 
 void IcTracer::add_area_light_emission(const Ray& ray, float t_surface, bool camera_ray, const PathState& st,

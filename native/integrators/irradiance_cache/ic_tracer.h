@@ -9,8 +9,9 @@
 // so specular and glossy paths are traced until they reach diffuse surfaces, where the cache takes over. Direct
 // light is PATH's estimate over the whole BSDF — next-event estimation and the BSDF-sampled continuation combined by
 // MIS (common/direct_light.h) — and the gathers leave out every light next-event estimation samples: the
-// continuation is sampled from the whole BSDF, counts the emission it finds with the whole BSDF's weight, and
-// carries past it only the share of the lobes the cache does not serve.
+// continuation is sampled from the whole BSDF, counts the light-sampled emission it finds with the whole BSDF's
+// weight, and carries everything else (emitters no light sampling reaches, such as a constant world, and all that
+// lies past its hit) with only the share of the lobes the cache does not serve.
 //
 // A record's gather (ic_hemisphere.h) traces each of its M × N rays on as a path: at the hit its full outgoing
 // radiance by path tracing — emission (except, at the first hit, that of lights next-event estimation at x samples),
@@ -86,8 +87,8 @@ public:
 
     /// What a ray carries to the vertex it finds (public for the implementation's helpers).
     struct PathState {
-        Color beta_emit{1.f};  // throughput of the emission the ray finds (the whole BSDF at its origin)
-        Color beta{1.f};       // throughput of everything past it (the lobes the cache did not serve there)
+        Color beta_emit{1.f};  // throughput of light-sampled emission the ray finds (the whole BSDF at its origin)
+        Color beta{1.f};       // throughput of everything else (the lobes the cache did not serve there)
         EmissionOrigin origin;                 // the scattering that made the ray (MIS at an emitter it finds)
         const DirectLightRules* rules = nullptr;  // the rules emission found by it is weighed with
         float eta_scale = 1.f;                 // Π η² (roulette only)
