@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math.h"
 #include "integrators/irradiance_cache/ic_error.h"
 
 namespace candela {
@@ -16,10 +17,12 @@ bool IcCache::interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E
     double sum[3] = {0, 0, 0}, wsum = 0.0;
     int used = 0;
     const IcRecord* exact = nullptr;
+    const float a = m_rules.a;
     m_octree.for_each_near(x, 0.f, [&](uint32_t i) {
         const IcRecord& r = m_records[i];
+        if (length_squared(x - r.p) >= sqr(a * r.R)) return;  // outside its validity sphere: ε ≥ a already
         float err;
-        if (!ic_usable(r, x, n, m_rules.a, &err)) return;
+        if (!ic_usable(r, x, n, a, &err)) return;
         ++used;
         if (!(err > 0.f)) {  // at the record itself: its own value (w = ∞)
             if (!exact) exact = &r;
@@ -43,8 +46,10 @@ bool IcCache::interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E
 bool IcCache::covered(const Vec3& x, const Vec3& n) const {
     bool found = false;
     m_octree.for_each_near(x, 0.f, [&](uint32_t i) {
+        const IcRecord& r = m_records[i];
+        if (found || length_squared(x - r.p) >= sqr(m_rules.a * r.R)) return;
         float err;
-        if (!found && ic_usable(m_records[i], x, n, m_rules.a, &err)) found = true;
+        if (ic_usable(r, x, n, m_rules.a, &err)) found = true;
     });
     return found;
 }

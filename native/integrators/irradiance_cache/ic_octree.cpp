@@ -13,6 +13,7 @@ void IcOctree::insert(uint32_t index, const Vec3& p, float radius) {
     const bool inside = p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= lo.x + side && p.y <= lo.y + side &&
                         p.z <= lo.z + side;
     int32_t node = 0;
+    m_nodes[0].subtree.add(p, radius);
     if (inside) {
         // Descend while the child (side/2) is still at least the sphere's diameter.
         for (int depth = 0; depth < k_max_depth && 0.5f * side >= 2.f * radius; ++depth) {
@@ -26,11 +27,14 @@ void IcOctree::insert(uint32_t index, const Vec3& p, float radius) {
                 m_nodes[size_t(node)].child[c] = child;
             }
             node = child;
+            m_nodes[size_t(node)].subtree.add(p, radius);
             lo = clo;
             side = half;
         }
     }
-    m_nodes[size_t(node)].records.push_back(index);
+    Node& nd = m_nodes[size_t(node)];
+    nd.records.push_back(index);
+    nd.own.add(p, radius);
 }
 
 }  // namespace candela

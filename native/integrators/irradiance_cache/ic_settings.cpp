@@ -24,7 +24,7 @@ const std::vector<ParamSpec>& IcSettings::specs() {
                     "Ward's a: a record is used where its error ‖x − x_i‖/R_i + √(1 − n·n_i) is below this. Smaller: "
                     "more records, less interpolation error (records grow about as 1/a²)",
                     "Irradiance Cache"),
-        int_param("ic_gather_rays", "Gather Rays", 512, 4, 65536,
+        int_param("ic_gather_rays", "Gather Rays", 1024, 4, 65536,
                   "Rays of each record's stratified hemisphere gather (M × N cells, N ≈ πM); each ray's radiance is "
                   "path traced", "Irradiance Cache", 4096),
         float_param("ic_min_spacing", "Min Spacing", 1.5, 0.0, 1000.0,

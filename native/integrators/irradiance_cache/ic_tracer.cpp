@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <new>
+#include <optional>
+#include <type_traits>
 #include <variant>
 
 #include "core/error.h"
@@ -27,12 +30,13 @@ const Bsdf& empty_bsdf() {
 }
 
 /// A BSDF split into its Lambertian lobes (reflectance rho_d; what the cache serves) and the others. The common
-/// cases — all Lambertian, none Lambertian — refer to the BSDF itself instead of copying it.
-struct LobeSplit {
+/// cases — all Lambertian, none Lambertian — refer to the BSDF itself instead of copying it; only a mixed BSDF is
+/// copied (into raw storage: a default-constructed Bsdf would cost its lobe array's initialisation at every vertex).
+class LobeSplit {
+public:
     Color rho_d{0.f};
     const Bsdf* diffuse = nullptr;
     const Bsdf* other = nullptr;
-    Bsdf diffuse_storage, other_storage;
 
     explicit LobeSplit(const Bsdf& b) {
         int lambert = 0;
@@ -48,12 +52,17 @@ struct LobeSplit {
             diffuse = &b;
             other = &empty_bsdf();
         } else {
-            for (int i = 0; i < b.size(); ++i)
-                (std::holds_alternative<LambertBsdf>(b[i].lobe) ? diffuse_storage : other_storage).add(b[i].lobe, b[i].weight);
-            diffuse = &diffuse_storage;
-            other = &other_storage;
+            Bsdf* d = new (m_storage[0]) Bsdf();
+            Bsdf* o = new (m_storage[1]) Bsdf();
+            for (int i = 0; i < b.size(); ++i) (std::holds_alternative<LambertBsdf>(b[i].lobe) ? d : o)->add(b[i].lobe, b[i].weight);
+            diffuse = d;
+            other = o;
         }
     }
+
+private:
+    static_assert(std::is_trivially_destructible_v<Bsdf>, "LobeSplit keeps BSDFs in raw storage");
+    alignas(Bsdf) unsigned char m_storage[2][sizeof(Bsdf)];
 };
 
 }  // namespace
@@ -134,10 +143,12 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
 
     // The cache's part: the Lambertian lobes' indirect light from the records (or a new one), if this vertex uses
     // the cache at all; the other lobes are traced on.
-    const LobeSplit split(bsdf);
+    std::optional<LobeSplit> split_storage;  // only where the cache may serve this vertex
+    if (policy != CachePolicy::Never) split_storage.emplace(bsdf);
+    const LobeSplit* split = split_storage ? &*split_storage : nullptr;
     Color E(0.f);
     bool cached = false;
-    if (policy != CachePolicy::Never && !is_black(split.rho_d) && wo_local.z > 0.f) {
+    if (split && !is_black(split->rho_d) && wo_local.z > 0.f) {
         if (m_cache.interpolate(hit.p, v.frame.n, &E)) {
             cached = true;
         } else if (policy == CachePolicy::Create) {
@@ -173,7 +184,7 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
                 return d.visible;
             });
     }
-    if (cached) L += st.beta * split.rho_d * E * k_inv_pi;
+    if (cached) L += st.beta * split->rho_d * E * k_inv_pi;
 
     // The continuation, sampled from the whole BSDF (density p): the emission it finds carries β·f·|cos|/p (direct
     // light's BSDF-sampled estimate); everything past it only f_O's share, β·f_O·|cos|/p, where the cache served
@@ -186,7 +197,7 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
     const float weight = std::fabs(bs.wi.z) / bs.pdf;
     Color beta_emit = st.beta * bs.f * weight;
     Color beta = beta_emit;
-    if (cached && !bs.is_delta()) beta = split.other->empty() ? Color(0.f) : st.beta * split.other->f(wo_local, bs.wi) * weight;
+    if (cached && !bs.is_delta()) beta = split->other->empty() ? Color(0.f) : st.beta * split->other->f(wo_local, bs.wi) * weight;
     const float eta_scale = st.eta_scale * (bs.is_transmission() ? bs.eta * bs.eta : 1.f);
     if (roulette_here) {
         const float survive =
