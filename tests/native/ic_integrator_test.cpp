@@ -205,3 +205,22 @@ TEST(IrradianceCache, ClosedSphereFurnace) {
 
 }  // namespace
 }  // namespace candela::test
+
+namespace candela::test {
+namespace {
+
+// The memory hook: the session's estimate reserves the cache's capacity — one record per Min Spacing² pixels (at
+// least half a pixel) plus 4096 — at k_ic_bytes_per_record each; PATH reserves nothing.
+TEST(IrradianceCache, TheMemoryEstimateReservesTheRecords) {
+    const SceneArrays arrays = cornell_box_arrays();
+    Params p = cornell_box_params(200, 100, 4, "IRRADIANCE_CACHE");
+    EXPECT_EQ(ic_record_capacity(IcSettings::from_params(p), 20000.0), size_t(std::ceil(20000.0 / 2.25)) + 4096);
+    EXPECT_DOUBLE_EQ(Session::estimate_memory(arrays, p).integrator_bytes,
+                     double(size_t(std::ceil(20000.0 / 2.25)) + 4096) * double(k_ic_bytes_per_record));
+    p.set("ic_min_spacing", 0.0);
+    EXPECT_DOUBLE_EQ(Session::estimate_memory(arrays, p).integrator_bytes, (80000.0 + 4096.0) * k_ic_bytes_per_record);
+    EXPECT_EQ(Session::estimate_memory(arrays, cornell_box_params(200, 100, 4, "PATH")).integrator_bytes, 0.0);
+}
+
+}  // namespace
+}  // namespace candela::test
