@@ -51,7 +51,7 @@ def crop_window(render):
 
 
 def result_size(render):
-    """Size of the RenderResult Blender expects from the engine: the border window (blender-conventions §1.7)."""
+    """Size of the RenderResult Blender expects from the engine: the border window (docs/conventions.md §1)."""
     x0, y0, x1, y1 = crop_window(render)
     return x1 - x0, y1 - y0
 

@@ -1,8 +1,12 @@
 #include "integrators/integrator.h"
 
 #include "core/error.h"
+#include "integrators/bdpt/bdpt_integrator.h"
+#include "integrators/bdpt/bdpt_settings.h"
 #include "integrators/irradiance_cache/ic_integrator.h"
 #include "integrators/irradiance_cache/ic_settings.h"
+#include "integrators/light/light_integrator.h"
+#include "integrators/light/light_settings.h"
 #include "integrators/path/path_integrator.h"
 #include "integrators/path/path_settings.h"
 
@@ -12,6 +16,14 @@ const std::vector<IntegratorEntry>& integrator_registry() {
     static const std::vector<IntegratorEntry> registry = {
         {"PATH", "Path Tracing", "Path tracing with next-event estimation and multiple importance sampling",
          &make_path_integrator, &PathSettings::specs},
+        {"LIGHT", "Light Tracing",
+         "Particle tracing from the lights, every vertex connected to the camera (emitters seen directly or through "
+         "mirrors and glass by a camera pass; surfaces seen only through them stay dark: use BDPT)",
+         &make_light_integrator, &LightSettings::specs, &light_integrator_memory},
+        {"BDPT", "Bidirectional",
+         "Bidirectional path tracing: camera and light subpaths joined by every (s, t) strategy, weighted by multiple "
+         "importance sampling (Veach 1997, ch. 10)",
+         &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory},
         {"IRRADIANCE_CACHE", "Irradiance Cache",
          "Ward's irradiance cache with gradients: indirect diffuse light interpolated from path-traced records, "
          "direct light and glossy paths traced per sample (biased, consistent as the error a shrinks)",

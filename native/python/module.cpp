@@ -189,6 +189,15 @@ py::dict capabilities() {
     d["tex_color_spaces"] = enum_dict(tex_color_space_names());
     d["tex_storages"] = enum_dict(tex_storage_names());
     d["input_targets"] = enum_dict(input_target_names());
+    d["musgrave_types"] = enum_dict(musgrave_type_names());
+    d["voronoi_features"] = enum_dict(voronoi_feature_names());
+    d["voronoi_metrics"] = enum_dict(voronoi_metric_names());
+    d["wave_types"] = enum_dict(wave_type_names());
+    d["wave_profiles"] = enum_dict(wave_profile_names());
+    d["gradient_types"] = enum_dict(gradient_type_names());
+    d["vector_math_ops"] = enum_dict(vector_math_op_names());
+    d["map_range_types"] = enum_dict(map_range_type_names());
+    d["sky_models"] = enum_dict(sky_model_names());
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;

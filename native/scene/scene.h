@@ -15,6 +15,7 @@
 #include "core/params.h"
 #include "core/transform.h"
 #include "lights/light.h"
+#include "lights/light_emission.h"
 #include "scene/camera.h"
 #include "scene/embree_device.h"
 #include "scene/ray_visibility.h"
@@ -34,11 +35,17 @@ struct SceneStats {
     size_t coplanar_objects = 0;    // objects with a coplanar overlapping rival (they get the tie-break filter)
 };
 
-/// A sphere enclosing everything a ray can hit (geometry and area lights) and the point lights: where light
-/// from the sun and the world enters the scene for light-rooted integrators.
-struct SceneSphere {
-    Vec3 center{0.f};
-    float radius = 1.f;
+/// The triangles of one top-level object as Embree holds them (Scene::object_triangles), for samplers of
+/// surface points: vertex positions (camera-world space for a flattened mesh; object space for an instance, which
+/// object_to_world maps to camera-world space) and three vertex indices per triangle. Valid while the scene lives.
+struct ObjectTriangles {
+    const float* vertices = nullptr;    // x, y, z per vertex
+    const uint32_t* indices = nullptr;  // 3 per triangle
+    uint32_t triangle_count = 0;
+    bool instanced = false;
+    uint32_t mesh = 0;                  // the input mesh: the instances of one mesh share vertices and indices
+    Affine object_to_world;             // the identity for a flattened mesh (its vertices are in world space)
+    uint8_t flags = k_object_default;   // ObjectFlag bits: the ray types the object is visible to
 };
 
 class Scene : private EmissionSource {
@@ -107,8 +114,23 @@ public:
         return hit.material < m_material_holdout.size() ? m_material_holdout[hit.material] : 0.f;
     }
     bool has_holdouts() const { return m_has_holdouts; }
+    /// Whether the object hit is visible to rays of `type` (Blender's Ray Visibility).
+    bool visible_to(const SurfaceHit& hit, uint8_t type) const { return (m_object_flags[hit.object] & type) != 0; }
+    /// Ray types some object is hidden from (light-rooted integrators cannot honour DIFFUSE, GLOSSY and
+    /// TRANSMISSION visibility, and say so).
+    uint32_t hidden_ray_types() const { return m_hidden_from; }
     /// Blender's pass index of the object hit (the IndexOB pass).
     uint32_t pass_index(const SurfaceHit& hit) const;
+
+    // Geometry for samplers of surface points (scene/scene_geometry.cpp). Top-level objects are numbered
+    // 0 .. object_count() − 1 (SurfaceHit::object), one per instance with faces.
+    uint32_t object_count() const;
+    ObjectTriangles object_triangles(uint32_t object) const;
+    /// The SurfaceHit at barycentrics (b1, b2) of triangle `prim` of `object`, filled as intersect() fills a hit
+    /// there (position, normals, material, light, primitive, object), with t = 0; shade() works on it.
+    SurfaceHit surface_point(uint32_t object, uint32_t prim, float b1, float b2) const;
+    /// ObjectFlag bits of a top-level object: the ray types it is visible to, holdout.
+    uint8_t object_flags(uint32_t object) const { return m_object_flags[object]; }
     /// Embree scene handle, for benchmarks that shoot raw rays.
     RTCScene embree_scene() const { return m_top.get(); }
 
@@ -137,7 +159,9 @@ private:
     /// turned to the side of the unit winding normal ng; ng itself for a flat triangle.
     static Vec3 shading_normal(const MeshShading& s, const Placement& pl, uint32_t prim, float b1, float b2, const Vec3& ng);
     /// The shader program's inputs at a hit on placement `pl`, seen from wo (scene/shading.cpp).
-    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl) const;
+    /// With `differentials`, also the offsets of Bump's finite differences (ShadingInputs::dp …).
+    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl,
+                                 bool differentials = false) const;
     /// The Holdout weight of a material whose weight comes from its shader program, at the hit (shading.cpp).
     float varying_holdout(const SurfaceHit& hit, const Vec3& wo) const;
     /// Whether material k's emission comes from its shader program (a textured emitter).

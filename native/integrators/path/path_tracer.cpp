@@ -220,7 +220,8 @@ inline __attribute__((always_inline)) bool PathTracer::scatter(const SurfaceHit&
         next->beta = st.beta * bs.f * (std::fabs(bs.wi.z) / (bs.pdf * float(branches)));
         next->origin.bsdf_pdf = bs.pdf;
         next->origin.specular = bs.is_delta();
-        // Radiance mode scales β by 1/η² at each refraction; undo it for the roulette only (robustness §5).
+        // Radiance mode scales β by 1/η² at each refraction; undo it for the roulette only
+        // (docs/robustness-notes.md §5).
         next->eta_scale = st.eta_scale * (bs.is_transmission() ? bs.eta * bs.eta : 1.f);
         next->from = hit.primitive;
         next->origin.point = ctx;
