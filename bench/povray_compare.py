@@ -18,7 +18,8 @@ pixel, with PATH (Sobol) for the set-up estimate and as a baseline, rendered rou
 render less the export and BVH set-up (bench/accuracy.py's rule).
 
 Writes DOCS/povray.md and DOCS/povray/cornell_box.png (both converged images and the error-vs-time curves).
---quick checks the pipeline at 32 px with short ladders into BUILD/povray-quick.
+--steps N shortens POV-Ray's ladder to steps 0 … N−1 with step N as its reference (the default, 6, takes about 25
+minutes in all). --quick checks the pipeline at 32 px with short ladders into BUILD/povray-quick.
 """
 
 import argparse
@@ -60,6 +61,9 @@ def parse_args():
     ap.add_argument("--size", type=int, default=96)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--max-samples", type=int, default=1024)
+    ap.add_argument("--steps", type=int, default=len(POV_LADDER),
+                    help="POV-Ray ladder steps 0 … steps−1, the reference being step `steps` (default 6: about 10 "
+                         "minutes for the reference alone at 96 px on an idle machine)")
     ap.add_argument("--quick", action="store_true")
     a = ap.parse_args()
     if a.quick:
@@ -155,8 +159,9 @@ def main():
     native = accuracy.native_module()
     a.out.mkdir(parents=True, exist_ok=True)
     started = time.time()
-    ladder = POV_LADDER[:2] if a.quick else POV_LADDER
-    ref_quality = POV_LADDER[2] if a.quick else POV_REFERENCE
+    steps = 2 if a.quick else a.steps
+    ladder = [pov_step(k) for k in range(steps)]
+    ref_quality = pov_step(steps)
 
     # POV-Ray: the reference once, then the ladder.
     ref_path = a.out / f"povray_reference_{a.size}.exr"
@@ -233,7 +238,7 @@ def write_docs(a, pov, ref_cpu, ref_quality, ic_p, path_p, t_pov, t_ic, t_path, 
           "| step | settings | CPU s | rel. RMSE |", "|---|---|---|---|"]
     for p in pov:
         md.append(f"| {p['step']} | {', '.join(f'{v:g}' for v in p['quality'])} | {p['cpu']:.3g} | {p['rrmse']:.4f} |")
-    md.append(f"| reference | {', '.join(f'{v:g}' for v in ref_quality)} | {ref_cpu:.3g} | — |")
+    md.append(f"| reference (step {len(pov)}) | {', '.join(f'{v:g}' for v in ref_quality)} | {ref_cpu:.3g} | — |")
     md += ["", "Candela (samples per pixel: CPU s, rel. RMSE against PATH's reference):", ""]
     for label, p in (("IRRADIANCE_CACHE", ic_p), ("PATH", path_p)):
         md.append(f"- {label}: " + ", ".join(f"{n}: {t:.3g} s {e:.4f}" for n, t, e in zip(p["samples"], p["time"],
