@@ -6,9 +6,10 @@ PYTHON := /usr/bin/python3.11
 CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
-    python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib
+    python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib \
+    povray
 
-.PHONY: all deps build demo test bench microbench accuracy parity sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench accuracy povray-compare parity sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender
 
 all: build
 
@@ -45,6 +46,11 @@ bench: build
 # Error-vs-time report: docs/accuracy.md, docs/accuracy/*.png and measurements.csv (about 10 minutes idle, < 30 loaded).
 accuracy: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD)
+
+# Candela's irradiance cache beside POV-Ray 3.7's radiosity on the Cornell box: the time each needs to reach 2 %
+# against its own converged image, docs/povray.md (about 25 minutes, most of it POV-Ray's reference).
+povray-compare: build
+	$(CLEAN_ENV) $(PYTHON) bench/povray_compare.py --build $(BUILD)
 
 # Parity with Cycles 3.4 on scripted scenes at full size: build/parity/ and docs/parity.md (about 30 minutes;
 # then the per-node suite, docs/parity_nodes.md, about 5 minutes;

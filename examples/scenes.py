@@ -6,9 +6,11 @@ Scenes: "cornell_box" (examples/cornell_box.py), "soft_shadow" (an area light, a
 "veach_mis" (Veach's four glossy plates under four spheres of equal power and very different sizes,
 docs/verification.md §8.2, converted to Blender's Z-up), "glossy" (glossy and diffuse spheres under an area
 light and a dim sky), "many_lights" (64 small point lights of very different powers over blocks on a floor,
-for the light-selection strategies), "caustic" (a glass sphere's caustic on a floor under a small light) and
-"door" (Veach's door ajar: a room lit only through a gap from a lamp in a second room). Every builder clears the scene and applies the shared render settings of
-cornell_box.configure_render / configure_cycles / configure_candela (same bounces, filter and seed).
+for the light-selection strategies), "room_window" (a diffuse room lit by the sun and the sky through a window: light
+that has bounced lights most of it), "caustic" (a glass sphere's caustic on a floor under a small light) and "door"
+(Veach's door ajar: a room lit only through a gap from a lamp in a second room). Every builder clears the scene and
+applies the shared render settings of cornell_box.configure_render / configure_cycles / configure_candela (same
+bounces, filter and seed).
 """
 
 import math
@@ -214,6 +216,47 @@ def build_many_lights(scene):
     return 1.0
 
 
+def build_room_window(scene):
+    """A diffuse interior lit through a window: a 4 × 5 × 2.6 m room (off-white walls and ceiling, a brown floor, a red
+    block and a blue one), sunlight through a 1.2 × 1.2 m opening in the left wall and a blue sky outside. Most of
+    the room sees neither: it is lit by light that has bounced (the case the irradiance cache is for)."""
+    walls, floor = diffuse("Walls", (0.75, 0.74, 0.7)), diffuse("Floor", (0.45, 0.35, 0.25))
+    deg = math.radians
+
+    def wall_x(name, x, y0, y1, z0, z1):   # a piece of the plane x = const
+        return rectangle(scene, name, walls, Matrix.Translation((x, 0.5 * (y0 + y1), 0.5 * (z0 + z1))) @
+                         Matrix.Rotation(deg(90), 4, "Y") @ Matrix.Diagonal((0.5 * (z1 - z0), 0.5 * (y1 - y0), 1, 1)))
+
+    def wall_y(name, y):                    # the whole plane y = const
+        return rectangle(scene, name, walls, Matrix.Translation((0, y, 1.3)) @ Matrix.Rotation(deg(90), 4, "X") @
+                         Matrix.Diagonal((2.0, 1.3, 1, 1)))
+
+    rectangle(scene, "Floor", floor, Matrix.Diagonal((2.0, 2.5, 1, 1)))
+    rectangle(scene, "Ceiling", walls, Matrix.Translation((0, 0, 2.6)) @ Matrix.Diagonal((2.0, 2.5, 1, 1)))
+    wall_y("Back", 2.5)
+    wall_y("Front", -2.5)
+    wall_x("Right", 2.0, -2.5, 2.5, 0.0, 2.6)
+    # The left wall around the window y ∈ [−0.1, 1.1], z ∈ [0.9, 2.1].
+    wall_x("LeftLow", -2.0, -2.5, 2.5, 0.0, 0.9)
+    wall_x("LeftHigh", -2.0, -2.5, 2.5, 2.1, 2.6)
+    wall_x("LeftFront", -2.0, -2.5, -0.1, 0.9, 2.1)
+    wall_x("LeftBack", -2.0, 1.1, 2.5, 0.9, 2.1)
+    cube(scene, "RedBlock", diffuse("RedBlock", (0.6, 0.12, 0.08)),
+         Matrix.Translation((0.7, 1.5, 0.4)) @ Matrix.Diagonal((0.9, 0.45, 0.4, 1)))
+    cube(scene, "BlueBlock", diffuse("BlueBlock", (0.1, 0.2, 0.55)),
+         Matrix.Translation((1.5, -0.6, 0.6)) @ Matrix.Diagonal((0.3, 0.5, 0.6, 1)))
+    sun = bpy.data.lights.new("Sun", 'SUN')
+    sun.energy, sun.angle = 12.0, math.radians(0.5)
+    ob = bpy.data.objects.new("Sun", sun)
+    # Shining along (1, 0.15, −0.6): through the window, down onto the floor.
+    from mathutils import Vector
+    ob.rotation_euler = Vector((1.0, 0.15, -0.6)).normalized().to_track_quat('-Z', 'Y').to_euler()
+    scene.collection.objects.link(ob)
+    world(scene, (0.45, 0.6, 1.0), 2.0)
+    camera(scene, (0.0, -2.35, 1.45), (86.0, 0.0, 0.0), lens=16.0)
+    return 4 / 3
+
+
 def glass(name, ior=1.5):
     def make(nt):
         n = nt.nodes.new("ShaderNodeBsdfGlass")
@@ -269,7 +312,8 @@ def build_door(scene):
 
 
 BUILDERS = {"soft_shadow": build_soft_shadow, "veach_mis": build_veach_mis, "glossy": build_glossy,
-            "many_lights": build_many_lights, "caustic": build_caustic, "door": build_door}
+            "many_lights": build_many_lights, "room_window": build_room_window, "caustic": build_caustic,
+            "door": build_door}
 NAMES = ["cornell_box", *BUILDERS]
 
 

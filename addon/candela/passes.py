@@ -17,6 +17,8 @@ PASSES = (
     RenderPass("Albedo", 3, "RGB", 'COLOR', "candela", "use_pass_albedo"),
     RenderPass("IndexOB", 1, "X", 'VALUE', "view_layer", "use_pass_object_index"),
     RenderPass("Noise", 1, "X", 'VALUE', "candela", "use_pass_noise"),
+    # An integrator's debug pass: the irradiance cache's records per pixel (0 for the other integrators).
+    RenderPass("IC Records", 1, "X", 'VALUE', "candela", "use_pass_ic_records"),
 )
 
 

@@ -94,6 +94,10 @@ class CandelaViewLayerSettings(bpy.types.PropertyGroup):
     use_pass_noise: BoolProperty(
         name="Noise", description="Per-pixel estimated standard error of the pixel's luminance (pass 'Noise')",
         default=False)
+    use_pass_ic_records: BoolProperty(
+        name="IC Records", description="Irradiance Cache integrator: how many cache records each pixel's paths "
+        "made (pass 'IC Records'), to see where the cache spends its work; 0 for the other integrators",
+        default=False)
 
 
 def register():

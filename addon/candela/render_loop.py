@@ -56,22 +56,31 @@ def format_count(n):
 
 def status_line(integrator, progress):
     """"Path | Sample 37/256 | Elapsed 00:12 | Remaining 00:41", the phase while building, or the integrator's
-    current stage with its own progress ("Photon | Tracing photons 3.2 M / 10 M | Elapsed 00:04")."""
+    current stage with its own progress ("Photon | Tracing photons 3.2 M / 10 M | Elapsed 00:04", or in percent:
+    "Irradiance Cache | Irradiance cache 41 % | 1234 records | Elapsed 00:04"); the integrator's note (its record
+    count) stays in the line while it renders."""
     name = integrator.replace("_", " ").title() if integrator != "BDPT" else "BDPT"
     elapsed = float(progress.get("elapsed_s", 0.0))
     phase = progress.get("phase", "rendering")
     if phase == "building":
         return f"{name} | Building scene | Elapsed {format_duration(elapsed)}"
     stage = progress.get("stage") or ""
+    note = progress.get("note") or ""      # the integrator's status beside its progress ("1234 records")
+    note_part = f" | {note}" if note else ""
     if stage and phase == "rendering":
         stage_total = int(progress.get("stage_total", 0))
-        what = (f"{stage} {format_count(progress.get('stage_done', 0))} / {format_count(stage_total)}" if stage_total
-                else stage)
-        return f"{name} | {what} | Elapsed {format_duration(elapsed)}"
+        stage_done = int(progress.get("stage_done", 0))
+        if stage_total and progress.get("stage_percent"):
+            what = f"{stage} {int(100 * stage_done / stage_total)} %"
+        elif stage_total:
+            what = f"{stage} {format_count(stage_done)} / {format_count(stage_total)}"
+        else:
+            what = stage
+        return f"{name} | {what}{note_part} | Elapsed {format_duration(elapsed)}"
     done, total = int(progress.get("samples_done", 0)), int(progress.get("samples_total", 0))
     unit = (progress.get("unit") or "sample").capitalize()
     fraction = float(progress.get("fraction", 0.0))
-    line = f"{name} | {unit} {done}/{total} | Elapsed {format_duration(elapsed)}"
+    line = f"{name} | {unit} {done}/{total}{note_part} | Elapsed {format_duration(elapsed)}"
     error = progress.get("relative_error")
     if error is not None:
         line += f" | Noise {100.0 * error:.1f} %"

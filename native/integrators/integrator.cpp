@@ -5,6 +5,8 @@
 #include "integrators/bdpt/bdpt_settings.h"
 #include "integrators/generators/generator_integrator.h"
 #include "integrators/generators/generator_settings.h"
+#include "integrators/irradiance_cache/ic_integrator.h"
+#include "integrators/irradiance_cache/ic_settings.h"
 #include "integrators/light/light_integrator.h"
 #include "integrators/light/light_settings.h"
 #include "integrators/mlt/mlt_integrator.h"
@@ -46,6 +48,11 @@ const std::vector<IntegratorEntry>& integrator_registry() {
          "Multiplexed Metropolis light transport (Hachisuka et al. 2014): chains over path length and one "
          "bidirectional strategy chosen per mutation; Samples are mutations per pixel",
          &make_mmlt_integrator, &MltSettings::specs, &mlt_integrator_memory},
+        {"IRRADIANCE_CACHE", "Irradiance Cache",
+         "Ward's irradiance cache with gradients: indirect diffuse light interpolated from path-traced records, "
+         "direct light and glossy paths traced per sample (biased, consistent as the error a shrinks)",
+         static_cast<std::unique_ptr<Integrator> (*)(const Params&)>(&make_ic_integrator), &IcSettings::specs,
+         &ic_memory_bytes},
     };
     return registry;
 }

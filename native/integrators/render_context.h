@@ -18,25 +18,34 @@ namespace candela {
 enum class StopReason : int { Running = 0, Samples, TimeLimit, NoiseThreshold, Cancelled };
 const char* stop_reason_name(StopReason r);
 
-/// A named stage of the render and how far it is ("Tracing photons", 3.2 M of 10 M). No stage: the progressive
-/// render itself, counted by RenderCounters::work_done in the integrator's work unit.
+/// A named stage of the render and how far it is ("Tracing photons", 3.2 M of 10 M; or "Irradiance cache", 41 %
+/// when `percent`: a stage whose total is a count of steps the user has no use for). No stage: the progressive
+/// render itself, counted by RenderCounters::work_done in the integrator's work unit. The note is a short status
+/// the integrator keeps up to date beside its progress ("1,234 records"), shown during and after its stages.
 class StageProgress {
 public:
     struct Snapshot {
         std::string name;  // empty: no stage
         int64_t done = 0, total = 0;
+        bool percent = false;
+        std::string note;  // empty: none
     };
-    void begin(std::string name, int64_t total) {
+    void begin(std::string name, int64_t total, bool percent = false) {
         std::lock_guard<std::mutex> lock(m_mutex);
         m_name = std::move(name);
         m_done = 0;
         m_total = total;
+        m_percent = percent;
     }
     void set_done(int64_t done) { m_done.store(done, std::memory_order_relaxed); }
     void end() { begin(std::string(), 0); }
+    void set_note(std::string note) {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        m_note = std::move(note);
+    }
     Snapshot snapshot() const {
         std::lock_guard<std::mutex> lock(m_mutex);
-        return {m_name, m_done.load(std::memory_order_relaxed), m_total};
+        return {m_name, m_done.load(std::memory_order_relaxed), m_total, m_percent, m_note};
     }
 
 private:
@@ -44,6 +53,8 @@ private:
     std::string m_name;
     std::atomic<int64_t> m_done{0};
     int64_t m_total = 0;
+    bool m_percent = false;
+    std::string m_note;
 };
 
 struct RenderCounters {

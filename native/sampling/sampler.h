@@ -80,6 +80,13 @@ public:
         return d;
     }
     uint32_t samples_per_pixel() const { return m_spp; }
+    /// The full-frame pixel the sampler is positioned at.
+    uint32_t pixel_x() const { return uint32_t(m_pixel); }
+    uint32_t pixel_y() const { return uint32_t(m_pixel >> 32); }
+    /// A key unique to the current pixel sample — a function of (seed, pixel, sample index), so of the noise
+    /// replicate too — for random streams an integrator draws outside the sampler's dimensions (the irradiance
+    /// cache seeds a record's gather with it). It does not move the sampler.
+    uint64_t sample_stream_key() const { return hash_combine(m_pixel_key, uint64_t(m_index) + 0x6b6579ULL); }
 
 protected:
     /// start_pixel_sample without the sample key (for samplers that never draw independent values).

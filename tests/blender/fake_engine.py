@@ -33,14 +33,15 @@ class FakeResult:
 
 
 class FakeEngine:
-    """test_break() turns True `break_after` s after construction, or from its `break_on_call`-th call on (None: never).
-    `break_time` records when it first returned True."""
+    """test_break() turns True `break_after` s after construction, from its `break_on_call`-th call on, or from the
+    first call after a status line containing `break_on_stats` was shown (None: never). `break_time` records when it
+    first returned True."""
 
     camera_override = None
 
-    def __init__(self, break_after=None, break_on_call=None):
+    def __init__(self, break_after=None, break_on_call=None, break_on_stats=None):
         self.start = time.monotonic()
-        self.break_after, self.break_on_call = break_after, break_on_call
+        self.break_after, self.break_on_call, self.break_on_stats = break_after, break_on_call, break_on_stats
         self.calls = 0
         self.break_time = None
         self.result = None
@@ -53,7 +54,8 @@ class FakeEngine:
         self.calls += 1
         now = time.monotonic()
         hit = (self.break_after is not None and now - self.start >= self.break_after) or \
-              (self.break_on_call is not None and self.calls >= self.break_on_call)
+              (self.break_on_call is not None and self.calls >= self.break_on_call) or \
+              (self.break_on_stats is not None and any(self.break_on_stats in line for line in self.stats))
         if hit and self.break_time is None:
             self.break_time = now
         return hit

@@ -77,6 +77,20 @@ def diffuse_material(name, color):
     return mat
 
 
+def lambert_material(name, color):
+    """A Diffuse BSDF (roughness 0: Lambert), whose albedo is exactly its colour: what the irradiance cache serves
+    (it leaves Principled's diffuse, which is not Lambertian, to path tracing: docs/irradiance_cache.md)."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    nodes.remove(nodes["Principled BSDF"])
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (*color, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0
+    links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
+    return mat
+
+
 def emission_material(name, color, strength):
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True

@@ -105,6 +105,17 @@ def test_status_line_shows_noise_and_why_the_render_stopped():
         "Path | Sample 48/1024 | Elapsed 00:03 | Noise 2.0 % | Stopped: noise threshold"
 
 
+def test_status_line_shows_a_stage_in_percent_and_the_integrators_note():
+    progress = {"phase": "rendering", "stage": "Irradiance cache", "stage_done": 41, "stage_total": 100,
+                "stage_percent": True, "note": "1234 records", "elapsed_s": 4.0}
+    assert render_loop.status_line("IRRADIANCE_CACHE", progress) == \
+        "Irradiance Cache | Irradiance cache 41 % | 1234 records | Elapsed 00:04"
+    progress = {"phase": "rendering", "samples_done": 3, "samples_total": 16, "fraction": 0.1875, "elapsed_s": 3.0,
+                "note": "1300 records", "stage": ""}
+    assert render_loop.status_line("IRRADIANCE_CACHE", progress) == \
+        "Irradiance Cache | Sample 3/16 | 1300 records | Elapsed 00:03 | Remaining 00:13"
+
+
 def test_backoff_grows_and_caps():
     b = render_loop.Backoff(0.5, 2.0, 4.0, now=0.0)
     due = [t / 10 for t in range(0, 200) if b.due(t / 10)]

@@ -15,19 +15,6 @@ CANDELA_BLENDER = os.path.join(scenes.REPO, "bin", "candela-blender")
 W, H = 24, 16
 
 
-def lambert_material(name, color):
-    """A Diffuse BSDF (roughness 0: Lambert), whose albedo is exactly its colour."""
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    nodes, links = mat.node_tree.nodes, mat.node_tree.links
-    nodes.remove(nodes["Principled BSDF"])
-    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = (*color, 1.0)
-    diffuse.inputs["Roughness"].default_value = 0.0
-    links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
-    return mat
-
-
 def plane_scene():
     """The camera at the origin looks along +Y (a rotated camera: the Normal pass is world space, not camera space) at
     a 4 m × 4 m plane at y = 5 facing it; the plane covers the middle of the frame, the rest is background."""
@@ -38,7 +25,7 @@ def plane_scene():
     plane.location = (0.0, 5.0, 0.0)
     plane.rotation_euler = (math.pi / 2, 0.0, 0.0)   # the XY plane turned to face −Y
     plane.pass_index = 7
-    plane.data.materials.append(lambert_material("Colour", (0.2, 0.4, 0.6)))
+    plane.data.materials.append(scenes.lambert_material("Colour", (0.2, 0.4, 0.6)))
     light = scenes.link(scene, bpy.data.objects.new("Point", bpy.data.lights.new("Point", 'POINT')))
     light.location = (0.0, 2.0, 1.0)
     light.data.energy = 100.0
@@ -137,3 +124,26 @@ def test_bdpt_strategy_images_reach_the_multilayer_exr_and_sum_to_the_image(tmp_
         total = sum(channels[f"{layer}.{n}.{c}"] for n in names if not n.endswith("unweighted"))
         assert combined.max() > 0.0
         np.testing.assert_allclose(total, combined, rtol=1e-3, atol=1e-5)
+
+
+def test_ic_records_pass_marks_the_irradiance_caches_records(tmp_path):
+    """The IC Records pass (View Layer › Passes › Candela) reaches the multilayer EXR: with the Irradiance Cache it
+    counts the records the pixels' paths made (on the plane, none on the background), with PATH it is zero."""
+    scene = plane_scene()
+    layer = bpy.context.view_layer
+    layer.use_pass_z = layer.use_pass_normal = layer.use_pass_object_index = False
+    layer.candela.use_pass_albedo = False
+    layer.candela.use_pass_ic_records = True
+    from candela.params import to_native_params
+    assert to_native_params(scene, scene.camera.data, argv=["blender"], view_layer=layer)["passes"] == "IC Records"
+    scene.candela.integrator = "IRRADIANCE_CACHE"
+    scene.candela.ic_gather_rays = 64
+    channels = render_multilayer(scene, str(tmp_path / "ic.exr"))
+    records = next(v for k, v in channels.items() if ".IC Records." in k)
+    assert records.shape == (H, W) and records.sum() >= 1 and np.all(records >= 0)
+    depth_free = np.isclose(records[0], 0.0).all() and np.isclose(records[-1], 0.0).all()   # background rows
+    assert depth_free, records
+    scene.candela.integrator = "PATH"
+    channels = render_multilayer(scene, str(tmp_path / "path.exr"))
+    assert np.all(next(v for k, v in channels.items() if ".IC Records." in k) == 0.0)
+    layer.candela.use_pass_ic_records = False

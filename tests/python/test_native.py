@@ -203,3 +203,42 @@ def test_a_thousand_instances_cost_one_meshs_memory(native):
     # here) and its BVH; 1,000 instances may add up to 256 bytes each (transform, Embree instance, record).
     assert one > 24 * T
     assert many - one < 1000 * 256 < one
+
+
+def test_irradiance_cache_reports_its_stage_records_and_pass(native):
+    """The pre-pass shows as a stage in percent with the record count beside it, the count stays in the progress
+    while rendering, the IC Records pass counts the same records, and the noise stop is refused with a log line
+    (both noise replicates read one cache)."""
+    s = native.Session(box_scene(), params(width=96, height=72, samples=4, integrator="IRRADIANCE_CACHE",
+                                           ic_gather_rays=2048, passes="IC Records", noise_threshold=0.01))
+    s.start()
+    seen = []
+    while not s.wait(0.002):
+        p = s.progress()
+        if p["stage"]:
+            seen.append((p["stage"], p["stage_percent"], p["stage_done"], p["stage_total"]))
+    assert s.error is None
+    assert seen and all(name == "Irradiance cache" and percent for name, percent, _, _ in seen)
+    assert all(0 <= done <= total for _, _, done, total in seen)
+    p = s.progress()
+    records = s.get_pass("IC Records")
+    assert records.shape == (96 * 72, 1) and records.sum() > 0 and records.max() >= 1
+    assert p["note"] == f"{int(records.sum())} records"
+    assert p["relative_error"] is None and p["stop_reason"] == "samples"
+    log = " ".join(s.take_log())
+    assert "noise threshold is off" in log and "irradiance cache:" in log
+
+
+def test_irradiance_cache_cancels_within_100_ms_in_the_pre_pass(native):
+    s = native.Session(box_scene(), params(width=256, height=256, samples=16, integrator="IRRADIANCE_CACHE",
+                                           ic_gather_rays=8192))
+    s.start()
+    while s.progress()["stage_done"] < 1:
+        time.sleep(0.005)
+    t0 = time.perf_counter()
+    s.cancel()
+    assert s.wait(2.0)
+    latency = time.perf_counter() - t0
+    print(f"irradiance cache pre-pass cancel latency {latency * 1000:.1f} ms")
+    assert latency < 0.1, f"cancel took {latency * 1000:.0f} ms"
+    assert s.progress()["phase"] == "cancelled" and s.progress()["stop_reason"] == "cancelled"

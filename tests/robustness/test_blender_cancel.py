@@ -100,3 +100,30 @@ def test_cancel_then_render_again_fifty_times_without_growing():
     print(f"60 render/cancel cycles in {time.monotonic() - start:.1f} s; resident {before / 1e6:.1f} MB -> "
           f"{after / 1e6:.1f} MB")
     assert after <= before * 1.05, f"resident memory grew from {before / 1e6:.1f} MB to {after / 1e6:.1f} MB"
+
+
+def test_cancel_the_irradiance_cache_in_its_pre_pass_and_while_rendering():
+    """The irradiance cache's stages: Esc during the pre-pass (its stage on the status line) and during the render
+    passes, within the same bound as PATH's."""
+    scene = scenes.tiny_scene(64, 48, samples=16)
+    scene.objects["Plane"].data.materials[0] = scenes.lambert_material("Lambert", (0.8, 0.8, 0.8))  # cached lobes
+    scene.candela.integrator = "IRRADIANCE_CACHE"
+    scene.candela.ic_gather_rays = 65536            # a pre-pass of many seconds: ~100 records of 65,536 rays
+    scene.candela.ic_max_spacing = 4.0
+    engine = FakeEngine(break_on_stats="Irradiance cache")   # Esc once the status line shows the pre-pass
+    progress, latency = render(scene, engine)
+    print(f"irradiance cache, Esc in the pre-pass: returned {latency * 1000:.0f} ms after Esc")
+    assert progress["phase"] == "cancelled" and progress["samples_done"] == 0, progress
+    assert any("Irradiance cache" in line and "%" in line for line in engine.stats), engine.stats
+    assert engine.ended and engine.image() is not None and np.isfinite(engine.image()).all()
+    assert latency < 0.45, f"{latency * 1000:.0f} ms"
+
+    scene.candela.ic_gather_rays = 64
+    scene.candela.samples = 100000
+    engine = FakeEngine(break_after=0.8)
+    progress, latency = render(scene, engine)
+    print(f"irradiance cache, Esc while rendering: returned {latency * 1000:.0f} ms after Esc")
+    assert progress["phase"] == "cancelled" and progress["samples_done"] > 0, progress
+    image = engine.image()
+    assert image is not None and np.isfinite(image).all() and image[:, :3].max() > 0.0
+    assert latency < 0.45, f"{latency * 1000:.0f} ms"

@@ -23,6 +23,7 @@ class CANDELA_VIEWLAYER_PT_passes(CandelaPanel, bpy.types.Panel):
         col.prop(view_layer, "use_pass_object_index")
         col = layout.column(heading="Candela", align=True)
         col.prop(view_layer.candela, "use_pass_noise")
+        col.prop(view_layer.candela, "use_pass_ic_records")
 
 
 classes = (CANDELA_VIEWLAYER_PT_passes,)

@@ -1,0 +1,215 @@
+#include "integrators/irradiance_cache/ic_integrator.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/parallel_ordered.h"
+#include "core/rng.h"
+#include "integrators/camera_tiles.h"
+#include "integrators/irradiance_cache/ic_cache.h"
+#include "lights/light_sampler.h"
+
+namespace candela {
+
+size_t ic_record_capacity(const IcSettings& s, double film_pixels) {
+    const double spacing = std::max(double(s.min_spacing), 0.5);
+    return size_t(std::ceil(film_pixels / (spacing * spacing))) + 4096;
+}
+
+double ic_memory_bytes(const Params& params, double film_pixels) {
+    return double(ic_record_capacity(IcSettings::from_params(params), film_pixels)) * double(k_ic_bytes_per_record);
+}
+
+namespace {
+
+/// The coarsest pre-pass grid: the largest power of two ≤ the maximum spacing (at least 1, at most 64 pixels).
+int coarsest_stride(float max_spacing) {
+    int s = 1;
+    while (s * 2 <= std::min(64.f, max_spacing)) s *= 2;
+    return s;
+}
+
+/// Whether full-frame pixel (fx, fy) is a grid point first visited at stride s (coarsest: `top`).
+bool on_level(int fx, int fy, int s, int top) {
+    if (fx % s != 0 || fy % s != 0) return false;
+    return s == top || fx % (2 * s) != 0 || fy % (2 * s) != 0;
+}
+
+class IcIntegrator final : public Integrator {
+public:
+    IcIntegrator(const Params& params, const IcProbe* probe)
+        : m_settings(IcSettings::from_params(params)), m_probe(probe) {}
+
+    void render(const Scene& scene, Film& film, RenderContext& ctx) override {
+        const LightSampler light_sampler = make_light_sampler("TREE", scene.lights());
+        IcCacheRules rules;
+        rules.a = m_settings.error;
+        rules.gradients = m_settings.gradients;
+        rules.neighbour_clamping = m_settings.neighbour_clamping;
+        rules.capacity = ic_record_capacity(m_settings, double(film.width()) * film.height());
+        IcCache cache(scene.bounds(), rules);
+        IcTracer tracer(scene, m_settings, light_sampler, cache, PixelFootprint::of(scene.camera()), ctx.cancel, m_probe);
+        State state{scene, film, ctx, cache, tracer};
+        if (!prepass(state)) {
+            ctx.counters.stop_reason = int(StopReason::Cancelled);
+            return;
+        }
+        const size_t from_prepass = cache.size();
+        render_passes(state);
+        ctx.log("irradiance cache: " + std::to_string(cache.size()) + " records (" + std::to_string(from_prepass) +
+                " from the pre-pass, " + std::to_string(cache.size() - from_prepass) + " added while rendering)");
+    }
+    WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
+
+private:
+    struct State {
+        const Scene& scene;
+        Film& film;
+        RenderContext& ctx;
+        IcCache& cache;
+        IcTracer& tracer;
+        bool logged_full = false;
+    };
+
+    /// Inserts a pass's candidates (the cache is not read meanwhile) in raster order — by the full-frame pixel
+    /// whose path made them, bottom row first, and for one pixel in the order its samples ran, which is fixed — so
+    /// the order depends neither on the thread count nor on the tiles; then shows the new state.
+    void merge(State& s, std::vector<IcRecord>& pending) {
+        std::stable_sort(pending.begin(), pending.end(), [](const IcRecord& a, const IcRecord& b) {
+            return a.pixel_y != b.pixel_y ? a.pixel_y < b.pixel_y : a.pixel_x < b.pixel_x;
+        });
+        size_t dropped = 0;
+        for (const IcRecord& r : pending)
+            if (s.cache.full()) ++dropped;
+            else s.cache.insert(r);
+        if (dropped && !s.logged_full) {
+            s.logged_full = true;
+            s.ctx.log("irradiance cache full at " + std::to_string(s.cache.size()) +
+                      " records (its memory estimate): further records are used where made but not stored");
+        }
+        s.ctx.counters.stage.set_note(std::to_string(s.cache.size()) + " records");
+        write_records_pass(s);
+    }
+
+    /// The "IC Records" pass: how many records each pixel's paths made.
+    void write_records_pass(State& s) {
+        AovFilm* aovs = s.ctx.aovs;
+        if (!aovs || !aovs->enabled("IC Records")) return;
+        const int w = s.film.width(), h = s.film.height();
+        std::vector<float> count(size_t(w) * h, 0.f);
+        for (const IcRecord& r : s.cache.records()) {
+            const int x = r.pixel_x - s.film.origin_x(), y = r.pixel_y - s.film.origin_y();
+            if (x >= 0 && y >= 0 && x < w && y < h) count[size_t(y) * w + x] += 1.f;
+        }
+        aovs->set_pass("IC Records", std::move(count));
+    }
+
+    /// The pre-pass: grids of stride 2^k, …, 2, 1 pixels; at each point the camera ray's first Lambertian surface
+    /// gets a record where none of the earlier levels' is usable. A level reads the cache as the earlier levels
+    /// left it; its records are merged in raster order (merge). False if cancelled.
+    bool prepass(State& s) {
+        const Film& film = s.film;
+        const int top = coarsest_stride(m_settings.max_spacing);
+        const int x0 = film.origin_x(), y0 = film.origin_y();
+        int64_t total = 0;
+        for (int st = top; st >= 1; st /= 2)
+            for (int y = 0; y < film.height(); ++y)
+                for (int x = 0; x < film.width(); ++x) total += on_level(x0 + x, y0 + y, st, top);
+        s.ctx.counters.stage.begin("Irradiance cache", total, /*percent=*/true);
+        s.ctx.counters.stage.set_note("0 records");
+        s.tracer.set_stage(IcStage::Prepass);
+        std::atomic<int64_t> done{0};
+        const auto& tiles = film.tiles();
+        for (int st = top; st >= 1; st /= 2) {
+            std::vector<IcRecord> pending;
+            try {
+                parallel_ordered(
+                    s.ctx.threads, tiles.size(), size_t(2 * std::max(1, s.ctx.threads)),
+                    [&](size_t t) {
+                        const Tile& tile = tiles[t];
+                        std::vector<IcRecord> out;
+                        PathStats stats;
+                        int64_t points = 0;
+                        for (int y = tile.y0; y < tile.y1 && !s.ctx.cancel.cancelled(); ++y)
+                            for (int x = tile.x0; x < tile.x1; ++x) {
+                                const int fx = x0 + x, fy = y0 + y;
+                                if (!on_level(fx, fy, st, top)) continue;
+                                ++points;
+                                const uint64_t key = hash_values(m_settings.pixel.seed, uint64_t(st),
+                                                                 (uint64_t(uint32_t(fy)) << 32) | uint32_t(fx));
+                                IcRecord r;
+                                if (s.tracer.prepass_record(fx, fy, key, stats, &r)) out.push_back(r);
+                            }
+                        stats.flush(s.ctx.counters);
+                        s.ctx.counters.stage.set_done(done += points);
+                        return out;
+                    },
+                    [&](size_t, std::vector<IcRecord>&& out) { pending.insert(pending.end(), out.begin(), out.end()); },
+                    &s.ctx.cancel);
+            } catch (const Cancelled&) {
+                return false;
+            }
+            if (s.ctx.cancel.cancelled()) return false;
+            merge(s, pending);
+        }
+        s.ctx.counters.stage.end();
+        return true;
+    }
+
+    /// The progressive render: camera samples through the tile loop, each pass reading the cache as the previous
+    /// left it; records its paths make (where none was usable) are merged after it in raster order. No noise source:
+    /// both noise replicates read one cache, so their agreement says nothing of its error (the driver logs that
+    /// and keeps the noise stop off).
+    void render_passes(State& s) {
+        const CameraTilePass<IcTracer> tiles(s.scene, s.film, s.ctx, m_settings.pixel, s.tracer);
+        s.tracer.set_stage(IcStage::Render);
+        ProgressivePlan plan;
+        plan.total = m_settings.pixel.samples;
+        plan.max_pass = camera_max_pass(s.film, m_settings.pixel);
+        plan.time_limit = m_settings.pixel.time_limit;
+        plan.noise_threshold = m_settings.pixel.noise_threshold;
+        run_progressive(
+            s.ctx, plan,
+            [&](int64_t begin, int64_t end) {
+                std::vector<IcRecord> pending;
+                try {
+                    parallel_ordered(
+                        s.ctx.threads, s.film.tiles().size(), size_t(2 * std::max(1, s.ctx.threads)),
+                        [&](size_t t) {
+                            std::vector<IcRecord> out;
+                            struct Sink {  // the tracer's records go to `out` while this tile renders
+                                explicit Sink(std::vector<IcRecord>* v) { IcTracer::set_sink(v); }
+                                ~Sink() { IcTracer::set_sink(nullptr); }
+                            } sink(&out);
+                            tiles.render_tile(t, int(begin), int(end));
+                            return out;
+                        },
+                        [&](size_t, std::vector<IcRecord>&& out) { pending.insert(pending.end(), out.begin(), out.end()); },
+                        &s.ctx.cancel);
+                } catch (const Cancelled&) {
+                    return;  // the driver sees the cancel
+                }
+                if (!s.ctx.cancel.cancelled()) merge(s, pending);
+            },
+            NoiseSource{});
+    }
+
+    IcSettings m_settings;
+    const IcProbe* m_probe;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_ic_integrator(const Params& params) {
+    return std::make_unique<IcIntegrator>(params, nullptr);
+}
+
+std::unique_ptr<Integrator> make_ic_integrator(const Params& params, const IcProbe* probe) {
+    return std::make_unique<IcIntegrator>(params, probe);
+}
+
+}  // namespace candela

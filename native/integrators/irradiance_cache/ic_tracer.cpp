@@ -1,0 +1,268 @@
+#include "integrators/irradiance_cache/ic_tracer.h"
+
+#include <cmath>
+#include <limits>
+#include <new>
+#include <optional>
+#include <type_traits>
+#include <variant>
+
+#include "core/error.h"
+#include "core/math.h"
+#include "core/rng.h"
+#include "integrators/camera_hit.h"
+#include "integrators/common/roulette.h"
+#include "integrators/irradiance_cache/ic_hemisphere.h"
+#include "integrators/irradiance_cache/ic_lobe_split.h"
+#include "integrators/ray_types.h"
+#include "scene/ray_offset.h"
+
+namespace candela {
+
+namespace {
+
+constexpr float k_inf = std::numeric_limits<float>::infinity();
+
+thread_local std::vector<IcRecord>* t_sink = nullptr;
+
+}  // namespace
+
+void IcTracer::set_sink(std::vector<IcRecord>* sink) { t_sink = sink; }
+
+IcTracer::IcTracer(const Scene& scene, const IcSettings& settings, const LightSampler& light_sampler,
+                   const IcCache& cache, const PixelFootprint& footprint, const CancelToken& cancel,
+                   const IcProbe* probe)
+    : m_scene(scene), m_settings(settings), m_light_sampler(light_sampler), m_cache(cache), m_footprint(footprint),
+      m_cancel(cancel), m_probe(probe), m_strata(GatherStrata::for_rays(settings.gather_rays)),
+      m_rules(settings.direct), m_rules_gathered(settings.direct) {
+    m_rules_gathered.light_sampling = LightSampling::LightOnly;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Emission found by a ray (the shared MIS rules, with the ray's own rule set: a gather ray's first segment weighs
+// the lights next-event estimation samples with 0).
+
+float IcTracer::emitter_pdf(const PathState& st, int32_t light, const Vec3& d, float t) const {
+    return nee_density(*st.rules, m_light_sampler, m_scene.lights(), st.origin, uint32_t(light), d, t);
+}
+
+void IcTracer::add_emission(const PathState& st, const Color& Le, float light_pdf, Color& L) const {
+    // A light next-event estimation samples (light_pdf > 0) is direct light of the whole BSDF at the ray's origin,
+    // MIS-weighted; any other emitter (a constant world, a never-selected triangle) is indirect light to the gathers
+    // there, which already hold the Lambertian lobes' share of it: the ray counts only the rest's (β).
+    L += (light_pdf > 0.f ? st.beta_emit : st.beta) * Le * emission_weight(*st.rules, st.origin, light_pdf);
+}
+
+void IcTracer::add_area_light_emission(const Ray& ray, float t_surface, bool camera_ray, const PathState& st,
+                                       Color& L) const {
+    const LightSet& lights = m_scene.lights();
+    if (lights.area_lights().empty()) return;
+    uint32_t li;
+    float tl;
+    if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, t_surface, &li, &tl, camera_ray)) {
+        const auto& area = std::get<AreaLight>(lights[li]);
+        add_emission(st, area.radiance, emitter_pdf(st, int32_t(li), ray.d, tl), L);
+    }
+}
+
+void IcTracer::add_world_emission(const Ray& ray, const PathState& st, Color& L) const {
+    const LightSet& lights = m_scene.lights();
+    if (const WorldLight* world = lights.world())
+        add_emission(st, world->Le(ray.d), emitter_pdf(st, int32_t(lights.world_light()), ray.d, k_inf), L);
+    else if (!is_black(lights.background()))
+        add_emission(st, lights.background(), 0.f, L);  // a constant world: never light-sampled, weight 1
+}
+
+void IcTracer::poll_gather() const {
+    if (m_probe && m_probe->on_gather_ray) m_probe->on_gather_ray(m_stage);
+    if (m_cancel.cancelled()) throw Cancelled();
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// A vertex.
+
+template <class Draw>
+bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, PathState& st, int bounce,
+                       CachePolicy policy, Draw&& draw, PathStats& stats, Color& L, uint64_t record_key, int px,
+                       int py) const {
+    const Vec3 wo = -ray.d;
+    const SurfaceVertex v = SurfaceVertex::at(hit, sp.ns, wo);
+    const Vec3 wo_local = v.frame.to_local(wo);
+    const Bsdf& bsdf = sp.bsdf();
+    SpawnPoints spawn(hit.p, v.ng);
+    const LightSet& lights = m_scene.lights();
+
+    // The cache's part: the Lambertian lobes' indirect light from the records (or a new one), if this vertex uses
+    // the cache at all; the other lobes are traced on.
+    std::optional<LobeSplit> split_storage;  // only where the cache may serve this vertex
+    if (policy != CachePolicy::Never) split_storage.emplace(bsdf);
+    const LobeSplit* split = split_storage ? &*split_storage : nullptr;
+    Color E(0.f);
+    bool cached = false;
+    if (split && !is_black(split->rho_d) && wo_local.z > 0.f) {
+        if (m_cache.interpolate(hit.p, v.frame.n, &E)) {
+            cached = true;
+        } else if (policy == CachePolicy::Create) {
+            IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key, stats);
+            rec.pixel_x = px;
+            rec.pixel_y = py;
+            E = rec.E;  // its value at its own point: what the cache would give here once it holds it
+            cached = true;
+            if (t_sink) t_sink->push_back(rec);
+        }
+    }
+
+    const bool nee_here = !lights.empty() && bsdf.has_non_delta();
+    const bool roulette_here = bounce + 1 >= m_settings.rr_start_bounce;
+    const bool discrete_here = bsdf.size() > 1 || (bsdf.flags() & k_bsdf_transmission);
+    const unsigned needs = (nee_here && !m_light_sampler.exhaustive() ? k_need_light_select : 0u) |
+                           (nee_here ? k_need_light : 0u) | (roulette_here ? k_need_roulette : 0u) |
+                           (discrete_here ? k_need_lobe : 0u);
+    const BounceSample u = draw(needs);
+
+    // Direct light over the whole BSDF, next-event estimation and BSDF sampling combined by MIS exactly as PATH
+    // (common/direct_light.h); the BSDF-sampled half is the continuation ray below, which therefore always
+    // leaves, whichever lobe it samples.
+    const LightSampleContext ctx{hit.p, v.ns};
+    int ward_tested = 0;
+    if (nee_here) {
+        ward_tested = next_event_estimation(
+            m_rules, m_light_sampler, lights, ctx, u.light_select, u.light, [&](uint32_t li, float pmf, Vec2 u_li) {
+                const DirectLightSample d = sample_direct_light(
+                    m_scene, m_rules, hit, v, spawn, ctx, bsdf, wo_local, st.beta, li, pmf, u_li,
+                    [&](const Vec3& wi) { return bsdf.pdf(wo_local, wi); }, stats.rays);
+                L += d.contribution;
+                return d.visible;
+            });
+    }
+    if (cached) L += st.beta * split->rho_d * E * k_inv_pi;
+
+    // The continuation, sampled from the whole BSDF (density p): the emission it finds carries β·f·|cos|/p (direct
+    // light's BSDF-sampled estimate); everything past it only f_O's share, β·f_O·|cos|/p, where the cache served
+    // the Lambertian lobes' indirect light (both estimates unbiased: p > 0 wherever f_O > 0).
+    const BsdfSample bs = bsdf.sample(wo_local, u.bsdf, u.lobe);
+    if (!bs.valid() || is_black(bs.f)) return false;
+    const Vec3 wi = v.frame.to_world(bs.wi);
+    const float cos_g = dot(wi, v.ng);
+    if (leaks(cos_g, bs.wi.z)) return false;
+    const float weight = std::fabs(bs.wi.z) / bs.pdf;
+    Color beta_emit = st.beta * bs.f * weight;
+    Color beta = beta_emit;
+    if (cached && !bs.is_delta()) beta = split->other->empty() ? Color(0.f) : st.beta * split->other->f(wo_local, bs.wi) * weight;
+    const float eta_scale = st.eta_scale * (bs.is_transmission() ? bs.eta * bs.eta : 1.f);
+    if (roulette_here) {
+        const float survive =
+            continuation_survival(RouletteMode::Throughput, beta_emit, 1, eta_scale, [] { return Color(1.f); });
+        if (!(survive > 0.f) || u.roulette >= survive) return false;
+        beta_emit /= survive;
+        beta /= survive;
+    }
+    if (is_black(beta_emit) || !is_finite(beta_emit) || !is_finite(beta)) return false;
+    st.beta_emit = beta_emit;
+    st.beta = beta;
+    st.eta_scale = eta_scale;
+    st.origin.specular = bs.is_delta();
+    st.origin.bsdf_pdf = bs.pdf;
+    st.origin.point = ctx;
+    st.origin.ward_tested = ward_tested;
+    st.rules = &m_rules;
+    st.from = hit.primitive;
+    ray = Ray{spawn.origin(cos_g > 0.f), wi, 0.f, k_inf, continuation_ray_type(bs, ray.type)};
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Camera paths.
+
+Color IcTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov) const {
+    Color L(0.f);
+    *alpha = 1.f;
+    std::visit([&](auto& concrete) { trace_camera(camera_ray, concrete, stats, L, alpha, aov, nullptr); }, sampler);
+    return L;
+}
+
+Color IcTracer::Li(const Ray& camera_ray, const TracedHit& first, Sampler& sampler, PathStats& stats, float* alpha,
+                   AovSample* aov) const {
+    Color L(0.f);
+    *alpha = 1.f;
+    std::visit([&](auto& concrete) { trace_camera(camera_ray, concrete, stats, L, alpha, aov, &first); }, sampler);
+    return L;
+}
+
+template <class ConcreteSampler>
+void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats, Color& L, float* alpha,
+                            AovSample* aov, const TracedHit* first) const {
+    if (m_probe && m_probe->on_camera_path) m_probe->on_camera_path();
+    PathState st;
+    st.rules = &m_rules;  // a camera ray: emission counts with weight 1 (origin.specular)
+    const int px = int(sampler.pixel_x()), py = int(sampler.pixel_y());
+    const uint64_t key = sampler.sample_stream_key();
+    for (int bounce = 0;; ++bounce) {
+        SurfaceHit hit;
+        ++stats.rays;
+        bool found;
+        if (first) {
+            found = first->found;
+            if (found) hit = first->hit;
+            first = nullptr;
+        } else {
+            found = m_scene.intersect(ray, &hit, st.from);
+        }
+        add_area_light_emission(ray, found ? hit.t : ray.tmax, bounce == 0, st, L);
+        if (!found) {
+            if (bounce == 0 && m_settings.pixel.film_transparent) *alpha = 0.f;
+            else add_world_emission(ray, st, L);
+            return;
+        }
+        if (bounce == 0 && !camera_hit(m_scene, ray, hit, aov, alpha)) return;  // data passes, holdout
+        const ShadingPoint sp = m_scene.shade(hit, -ray.d);
+        if (!is_black(sp.emission))
+            add_emission(st, sp.emission, hit.light >= 0 ? emitter_pdf(st, hit.light, ray.d, hit.t) : 0.f, L);
+        if (bounce > m_settings.max_bounces || is_black(st.beta)) return;
+        st.distance += hit.t;
+        auto draw = [&](unsigned needs) { return draw_bounce(sampler, bounce, needs); };
+        if (!scatter(hit, sp, ray, st, bounce, CachePolicy::Create, draw, stats, L,
+                     hash_combine(key, uint64_t(bounce)), px, py))
+            return;
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Gathers.
+
+Color IcTracer::trace_gather(const Ray& first_ray, const PathState& start, uint64_t key, PathStats& stats,
+                             float* distance) const {
+    Pcg32 rng(key, 0x676174686572ULL /* "gather" */);
+    Ray ray = first_ray;
+    PathState st = start;
+    Color L(0.f);
+    *distance = k_inf;
+    const CachePolicy policy = m_settings.reuse_at_bounces ? CachePolicy::ReadIfValid : CachePolicy::Never;
+    for (int bounce = 1;; ++bounce) {  // the record's vertex is bounce 0
+        SurfaceHit hit;
+        ++stats.rays;
+        const bool found = m_scene.intersect(ray, &hit, st.from);
+        add_area_light_emission(ray, found ? hit.t : ray.tmax, false, st, L);
+        if (!found) {
+            add_world_emission(ray, st, L);
+            return L;
+        }
+        if (bounce == 1) *distance = hit.t;
+        const ShadingPoint sp = m_scene.shade(hit, -ray.d);
+        if (!is_black(sp.emission))
+            add_emission(st, sp.emission, hit.light >= 0 ? emitter_pdf(st, hit.light, ray.d, hit.t) : 0.f, L);
+        if (bounce > m_settings.max_bounces || is_black(st.beta)) return L;
+        auto draw = [&](unsigned) {
+            BounceSample b;
+            b.light_select = rng.next_float();
+            b.light = {rng.next_float(), rng.next_float()};
+            b.bsdf = {rng.next_float(), rng.next_float()};
+            b.roulette = rng.next_float();
+            b.lobe = rng.next_float();
+            return b;
+        };
+        if (!scatter(hit, sp, ray, st, bounce, policy, draw, stats, L, 0, -1, -1)) return L;
+    }
+}
+
+}  // namespace candela
