@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "integrators/camera_hit.h"
+#include "integrators/common/light_path.h"
 #include "integrators/common/roulette.h"
 #include "integrators/common/surface_vertex.h"
 #include "integrators/common/vertex_bsdf.h"
@@ -54,14 +55,11 @@ void LightTracer::trace_path(S& sampler, int dim_bounce, uint32_t replicate, Spl
                              PathStats& stats) const {
     // The emitted ray: the emitter (LightSelect), its origin (Light), its direction (Bsdf), a triangle's side (lobe).
     const BounceSample u0 = draw_bounce(sampler, dim_bounce, k_need_light_select | k_need_light | k_need_lobe);
-    uint32_t index = 0;
-    float pmf = 0.f;
-    const EmissionSample es = m_emitters.sample_le(u0.light_select, u0.light, u0.bsdf, u0.lobe, &index, &pmf);
+    const LightPathStart start = start_light_path(m_emitters, u0.light_select, u0.light, u0.bsdf, u0.lobe);
     ++stats.paths;
-    if (!es.valid() || !(pmf > 0.f)) return;
-    Color beta = es.weight() / pmf;
-    if (!is_finite(beta)) return;
-    Ray ray{(es.delta_pos || es.infinite) ? es.p : offset_ray_origin(es.p, es.n), es.d, 0.f, k_inf, k_ray_all};
+    if (!start.valid) return;
+    Color beta = start.beta;
+    Ray ray = start.ray;
     PrimitiveRef from;
     const LightSettings& cfg = m_settings;
     float beta_ref = 0.f, eta_scale = 1.f;
@@ -85,16 +83,12 @@ void LightTracer::trace_path(S& sampler, int dim_bounce, uint32_t replicate, Spl
         if (s.bsdf.is_transmission() && s.bsdf.eta > 0.f) eta_scale /= s.bsdf.eta * s.bsdf.eta;
         if (roulette_here) {
             // Survival from the throughput relative to the first vertex's (a light path's β is a flux, not ≤ 1).
-            const Color relative = beta * (eta_scale / beta_ref);
-            const float q = cfg.rr_mode == RouletteMode::Albedo ? min_num(1.f, max_component(s.weight))
-                            : cfg.rr_mode == RouletteMode::SqrtThroughput ? arrival_survival(relative, 1.f)
-                                                                           : min_num(1.f, max_component(relative));
+            const float q = light_path_survival(cfg.rr_mode, s.weight, beta * (eta_scale / beta_ref));
             if (!(q > 0.f) || u.roulette >= q) return;
             beta /= q;
         }
         if (is_black(beta) || !is_finite(beta)) return;
-        const float cos_g = dot(s.w, hit.ng);
-        ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? hit.ng : -hit.ng), s.w, 0.f, k_inf, k_ray_all};
+        ray = ray_leaving(hit, s.w);
         from = hit.primitive;
     }
 }
