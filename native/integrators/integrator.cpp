@@ -7,6 +7,8 @@
 #include "integrators/light/light_settings.h"
 #include "integrators/path/path_integrator.h"
 #include "integrators/path/path_settings.h"
+#include "integrators/photon_map/photon_integrator.h"
+#include "integrators/photon_map/photon_settings.h"
 
 namespace candela {
 
@@ -22,6 +24,15 @@ const std::vector<IntegratorEntry>& integrator_registry() {
          "Bidirectional path tracing: camera and light subpaths joined by every (s, t) strategy, weighted by multiple "
          "importance sampling (Veach 1997, ch. 10)",
          &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory},
+        {"PHOTON", "Photon Mapping",
+         "Jensen's photon map: photons shot from the lights into a global and a caustic map; direct light by light "
+         "sampling, mirrors and glass by ray tracing, caustics from the caustic map, indirect light by final "
+         "gathering (biased, consistent as photons grow)",
+         &make_photon_integrator, &PhotonSettings::specs, &photon_integrator_memory},
+        {"SPPM", "Progressive Photon Mapping",
+         "Stochastic progressive photon mapping (Hachisuka & Jensen 2009): camera visible points and a photon pass "
+         "per iteration with shrinking radii; consistent, converges to the path tracer's image",
+         &make_sppm_integrator, &SppmSettings::specs, &sppm_integrator_memory},
     };
     return registry;
 }
