@@ -210,7 +210,11 @@ private:
                     if (p.vp.valid && !map.empty()) {
                         const ShadingPoint sp = m_scene.shade(p.vp.hit, p.vp.wo);
                         const VertexBsdf vb(m_scene, p.vp.hit, p.vp.wo, sp, &estimated);
-                        map.within(p.vp.hit.p, p.radius * p.radius, lookup_filter(vb, p.vp.wo), found);
+                        // The sphere, not Jensen's flattened disc: a sphere of radius r cuts a curved surface of
+                        // radius R in a cap of area πr² exactly, so uniform irradiance has no bias at any radius.
+                        PhotonFilter filter = lookup_filter(vb, p.vp.wo);
+                        filter.flatten = 0.f;
+                        map.within(p.vp.hit.p, p.radius * p.radius, filter, found);
                         if (!found.empty()) {
                             Color phi(0.f);
                             for (const PhotonNeighbor& nb : found) {
