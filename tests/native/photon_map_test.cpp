@@ -206,8 +206,8 @@ TEST(PhotonMapBias, PlaneUnderPointLightFollowsTheKernelLaw) {
 
 // ---- scenes -----------------------------------------------------------------------------------------------
 
-/// A diffuse room (albedo 0.6/0.5/0.4) with a rough glossy sphere, a point light and a disk area light; the camera
-/// at its centre. With `glass`, a smooth glass sphere stands on the floor under the point light.
+/// A diffuse room (albedo 0.6/0.5/0.4) with a rough glossy sphere, a point light and a disk area light behind the
+/// camera; the camera at its centre. With `glass`, a smooth glass sphere stands on the floor under the point light.
 SceneArrays room(bool glass) {
     MeshBuilder b;
     const uint32_t wall = b.add_material(Color(0.6f, 0.5f, 0.4f), Color(0.f));
@@ -217,7 +217,8 @@ SceneArrays room(bool glass) {
     const std::vector<float> xf = {1, 0, 0, -0.6f, 0, 1, 0, -1.f, 0, 0, 1, -1.8f, 0, 0, 0, 1};
     b.add_instance(b.add_sphere(0.5f, 24, 12, glossy), xf.data());
     b.add_point_light(Vec3(1.f, 0.8f, -1.2f), Color(6.f));
-    b.add_area_light(Vec3(0.8f, -1.f, -2.95f), Vec3(0.8f, 0.f, 0.f), Vec3(0.f, 0.5f, 0.f), Vec3(0.f, 0.f, 1.f),
+    // Behind the camera, facing the room: no pixel sees the light itself (its edge would dominate the noise).
+    b.add_area_light(Vec3(0.8f, -1.f, 2.9f), Vec3(0.8f, 0.f, 0.f), Vec3(0.f, 0.5f, 0.f), Vec3(0.f, 0.f, -1.f),
                      Color(8.f, 6.f, 4.f), /*disk=*/true);
     if (glass) {
         const uint32_t g = b.add_material(Color(0.f), Color(0.f));
@@ -288,23 +289,27 @@ TEST(PhotonFurnace, PhotonAndSppmInThePointLightSphere) {
 
 // ---- agreement with PATH -----------------------------------------------------------------------------------
 
-// Image means against PATH's (one seed each; PATH's standard error from its per-pixel variances). SPPM must be
-// within 2 % (the target) after 24 iterations; PHOTON within 3 %, its documented bias in this room (the
-// k-nearest estimate under the point light's falloff and at the corners, docs/photon-mapping.md).
+// Image means against PATH's, one seed each, with PATH's and PHOTON's standard errors from their per-pixel
+// variances (4 σ of their combination: a two-sided false alarm of 6e-5 for a normal error). SPPM's film entries
+// are not independent samples (sppm.h), so SPPM gets the same camera-noise allowance as PATH at its 32 camera samples
+// per pixel (PATH's σ scaled by √(512/32)). Bias allowances: SPPM 2 % (the target) after 32 iterations;
+// PHOTON 1 % (measured −0.2 % and +0.03 %: the k-nearest estimate at the corners and under the lights' falloff,
+// docs/photon-mapping.md).
 TEST(PhotonAgreement, PhotonAndSppmMatchPathInARoom) {
     for (bool glass : {false, true}) {
         const SceneArrays arrays = room(glass);
         const RenderResult path = render(arrays, room_params("PATH", 512));
-        const RenderResult photon = render(arrays, room_params("PHOTON", 8));
-        Params sp = room_params("SPPM", 24);
+        const RenderResult photon = render(arrays, room_params("PHOTON", 16));
+        Params sp = room_params("SPPM", 32);
         sp.set("sppm_photons", int64_t(100000));
         const RenderResult sppm = render(arrays, sp);
         const double ph = photon.mean_rgb / path.mean_rgb - 1.0, sd = sppm.mean_rgb / path.mean_rgb - 1.0;
-        std::printf("%s: PATH %.5f ± %.5f, PHOTON %+.4f, SPPM %+.4f\n", glass ? "glass room" : "diffuse room",
-                    path.mean_rgb, path.standard_error, ph, sd);
-        const double noise = 4.0 * path.standard_error / path.mean_rgb;
-        EXPECT_LT(std::fabs(ph), 0.03 + noise) << (glass ? "glass" : "diffuse");
-        EXPECT_LT(std::fabs(sd), 0.02 + noise) << (glass ? "glass" : "diffuse");
+        const double se_ph = std::hypot(path.standard_error, photon.standard_error) / path.mean_rgb;
+        const double se_sd = std::hypot(path.standard_error, 4.0 * path.standard_error) / path.mean_rgb;
+        std::printf("%s: PATH %.5f, PHOTON %+.4f (se %.4f), SPPM %+.4f (se %.4f)\n", glass ? "glass room" : "diffuse room",
+                    path.mean_rgb, ph, se_ph, sd, se_sd);
+        EXPECT_LT(std::fabs(ph), 0.01 + 4.0 * se_ph) << (glass ? "glass" : "diffuse");
+        EXPECT_LT(std::fabs(sd), 0.02 + 4.0 * se_sd) << (glass ? "glass" : "diffuse");
     }
 }
 
@@ -394,3 +399,4 @@ TEST(PhotonSettings, BadSettingsAreRefusedByName) {
 
 }  // namespace
 }  // namespace candela::test
+
