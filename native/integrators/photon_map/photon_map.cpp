@@ -183,6 +183,7 @@ void bounds_of(const Photon* p, size_t n, float lo[3], float hi[3]) {
 void PhotonMap::build(std::vector<Photon> photons, int threads, StageProgress* stage, const CancelToken* cancel) {
     m_forest.reset();
     m_photons = std::move(photons);
+    m_photons.shrink_to_fit();  // a shot grows by appending batches: up to twice its size in capacity
     if (m_photons.size() >= size_t(std::numeric_limits<uint32_t>::max()))
         throw InvalidParameter("a photon map holds fewer than 2^32 photons");
     auto forest = std::make_unique<Forest>();
