@@ -428,6 +428,31 @@ def main():
             print(tail(out))
             report["errors"].append(raw_note)
 
+    # 4c. Photon shooting rate and kd-tree build (issue 16): share of the raw rate measured in the same binary run.
+    photons_bin = os.path.join(build, "bin", "candela_bench_photons")
+    if os.access(photons_bin, os.X_OK) and dump_ok:
+        print("[4c] photon shooting and kd-tree build: candela_bench_photons")
+        rc, out = run([photons_bin, dump_dir], os.path.join(outdir, "bench_photons.log"))
+        pj = None
+        for line in reversed(out.splitlines()):
+            line = line.strip()
+            if line.startswith("{") and "photon_paths_per_second" in line:
+                try:
+                    pj = json.loads(line)
+                    break
+                except ValueError:
+                    pass
+        if rc == 0 and pj:
+            report["photons"] = pj
+            print(f"    photon paths {fmt_rate(pj['photon_paths_per_second'])}, "
+                  f"stored photons {fmt_rate(pj['stored_photons_per_second'])}; photon rays "
+                  f"{fmt_rate(pj['photon_rays_per_second'])} = {100.0 * pj['share_of_raw']:.0f} % of raw Embree "
+                  f"(target >= 50 %); kd-tree build {pj['build_seconds_per_10M']:.2f} s per 10 M photons (target <= 2 s), "
+                  f"{pj['map_bytes_per_photon']:.1f} bytes/photon")
+        else:
+            print(tail(out))
+            report["errors"].append(f"candela_bench_photons failed (exit {rc})")
+
     # 4b. The light tracer's ray rate on the same dump (issue 15: at least half the raw incoherent rate), measured
     # by the command-line renderer right after the raw rate, so both see the same machine load.
     lt_rate = None

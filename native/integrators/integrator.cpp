@@ -13,6 +13,8 @@
 #include "integrators/mlt/mlt_settings.h"
 #include "integrators/path/path_integrator.h"
 #include "integrators/path/path_settings.h"
+#include "integrators/photon_map/photon_integrator.h"
+#include "integrators/photon_map/photon_settings.h"
 
 namespace candela {
 
@@ -53,6 +55,15 @@ const std::vector<IntegratorEntry>& integrator_registry() {
          "direct light and glossy paths traced per sample (biased, consistent as the error a shrinks)",
          static_cast<std::unique_ptr<Integrator> (*)(const Params&)>(&make_ic_integrator), &IcSettings::specs,
          &ic_memory_bytes},
+        {"PHOTON", "Photon Mapping",
+         "Jensen's photon map: photons shot from the lights into a global and a caustic map; direct light by light "
+         "sampling, mirrors and glass by ray tracing, caustics from the caustic map, indirect light by final "
+         "gathering (biased, consistent as photons grow)",
+         &make_photon_integrator, &PhotonSettings::specs, &photon_integrator_memory},
+        {"SPPM", "Progressive Photon Mapping",
+         "Stochastic progressive photon mapping (Hachisuka & Jensen 2009): camera visible points and a photon pass "
+         "per iteration with shrinking radii; consistent, converges to the path tracer's image",
+         &make_sppm_integrator, &SppmSettings::specs, &sppm_integrator_memory},
     };
     return registry;
 }

@@ -1,5 +1,6 @@
-// The walk of a light path (light tracing, the source-shooting generator, photon shooting): an emitted ray chosen ∝
-// power (lights/emitter_set.h) with the flux weight β₀ = Le·|cos|/(p_pos·p_dir·P(light)), then at every surface
+// The walk of a light path (light tracing, the source-shooting generator), built on the light-path pieces photon
+// shooting uses too (common/light_path.h): an emitted ray chosen ∝ power (lights/emitter_set.h) with the flux
+// weight β₀ = Le·|cos|/(p_pos·p_dir·P(light)), then at every surface
 // vertex x_k a visit with the throughput β_k — for which E[Σ_k β_k h(x_k, w_k)] = ∫∫ h L_in |w·ng| dω dA, L_in the
 // radiance arriving at x_k from w (docs/architecture.md, "light paths") — and the continuation by light-side
 // sampling of the vertex BSDF (integrators/common/vertex_bsdf.h: importance transport, Veach's adjoint factor),
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <limits>
 
+#include "integrators/common/light_path.h"
 #include "integrators/common/roulette.h"
 #include "integrators/common/vertex_bsdf.h"
 #include "integrators/render_context.h"
@@ -34,16 +36,12 @@ void walk_light_path(const Scene& scene, const EmitterSet& emitters, const Light
                      int dim_bounce, PathStats& stats, Start&& start, Visit&& visit) {
     // The emitted ray: the emitter (LightSelect), its origin (Light), its direction (Bsdf), a triangle's side (lobe).
     const BounceSample u0 = draw_bounce(sampler, dim_bounce, k_need_light_select | k_need_light | k_need_lobe);
-    uint32_t index = 0;
-    float pmf = 0.f;
-    const EmissionSample es = emitters.sample_le(u0.light_select, u0.light, u0.bsdf, u0.lobe, &index, &pmf);
+    const LightPathStart emitted = start_light_path(emitters, u0.light_select, u0.light, u0.bsdf, u0.lobe);
     ++stats.paths;
-    if (!es.valid() || !(pmf > 0.f)) return;
-    Color beta = es.weight() / pmf;
-    if (!is_finite(beta)) return;
-    start(es, index);
-    Ray ray{(es.delta_pos || es.infinite) ? es.p : offset_ray_origin(es.p, es.n), es.d, 0.f,
-            std::numeric_limits<float>::infinity(), k_ray_all};
+    if (!emitted.valid) return;
+    Color beta = emitted.beta;
+    start(emitted.emission, emitted.emitter);
+    Ray ray = emitted.ray;
     PrimitiveRef from;
     float beta_ref = 0.f, eta_scale = 1.f;
     for (int depth = 1;; ++depth) {
@@ -64,17 +62,12 @@ void walk_light_path(const Scene& scene, const EmitterSet& emitters, const Light
         beta *= s.weight;
         if (s.bsdf.is_transmission() && s.bsdf.eta > 0.f) eta_scale /= s.bsdf.eta * s.bsdf.eta;
         if (roulette_here) {
-            const Color relative = beta * (eta_scale / beta_ref);
-            const float q = rules.rr_mode == RouletteMode::Albedo ? min_num(1.f, max_component(s.weight))
-                            : rules.rr_mode == RouletteMode::SqrtThroughput ? arrival_survival(relative, 1.f)
-                                                                             : min_num(1.f, max_component(relative));
+            const float q = light_path_survival(rules.rr_mode, s.weight, beta * (eta_scale / beta_ref));
             if (!(q > 0.f) || u.roulette >= q) return;
             beta /= q;
         }
         if (is_black(beta) || !is_finite(beta)) return;
-        const float cos_g = dot(s.w, hit.ng);
-        ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? hit.ng : -hit.ng), s.w, 0.f,
-                  std::numeric_limits<float>::infinity(), k_ray_all};
+        ray = ray_leaving(hit, s.w);
         from = hit.primitive;
     }
 }

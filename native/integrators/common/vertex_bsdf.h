@@ -20,12 +20,16 @@
 // and the ratio of the incoming direction's cosine about n, the normal of w_c's frame (the cosine the path
 // tracer's rendering equation takes at this vertex), over the geometric one the previous segment carried. With
 // ns = ng it is the usual f·|cos θ|/p.
+//
+// A vertex can also be restricted to a subset of its lobes (common/lobe_classes.h: the traced or the estimated ones),
+// on both sides: the photon tracers sample each part separately. Without a subset it is the whole BSDF.
 #pragma once
 
 #include <cmath>
 
 #include "bsdf/bsdf.h"
 #include "core/math.h"
+#include "integrators/common/lobe_classes.h"
 #include "integrators/common/surface_vertex.h"
 #include "sampling/warp.h"
 #include "scene/scene.h"
@@ -36,10 +40,13 @@ class VertexBsdf {
 public:
     /// The vertex at `hit`, shaded from direction w (the direction the path arrived along, reversed: toward where it
     /// came from), whose shading point is `sp` (Scene::shade(hit, w)).
-    VertexBsdf(const Scene& scene, const SurfaceHit& hit, const Vec3& w, const ShadingPoint& sp)
-        : m_scene(scene), m_hit(hit) {
+    /// With `subset`, only those lobes of the BSDF (on either side) are the vertex's.
+    VertexBsdf(const Scene& scene, const SurfaceHit& hit, const Vec3& w, const ShadingPoint& sp,
+               const LobeSubset* subset = nullptr)
+        : m_scene(scene), m_hit(hit), m_subset(subset) {
         const int s = side(w);
         m_sp[s] = sp;
+        if (m_subset) m_sp[s].own(m_subset->apply(sp.bsdf()));
         m_shaded[s] = true;
     }
 
@@ -49,6 +56,7 @@ public:
         const int s = side(w);
         if (!m_shaded[s]) {
             m_sp[s] = m_scene.shade(m_hit, w);
+            if (m_subset) m_sp[s].own(m_subset->apply(m_sp[s].bsdf()));
             m_shaded[s] = true;
         }
         return m_sp[s];
@@ -185,6 +193,7 @@ private:
 
     const Scene& m_scene;
     const SurfaceHit& m_hit;
+    const LobeSubset* m_subset = nullptr;
     mutable ShadingPoint m_sp[2];
     mutable bool m_shaded[2] = {false, false};
 };
