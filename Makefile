@@ -8,7 +8,7 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib
 
-.PHONY: all deps build demo test bench microbench accuracy parity sampling-docs fuzz test-sanitize robustness-report install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench accuracy parity env-variance sampling-docs fuzz test-sanitize robustness-report install-addon clean test-native test-blender
 
 all: build
 
@@ -52,6 +52,11 @@ accuracy: build
 parity: build
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --build $(BUILD) --docs docs
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --nodes --size 96 --build $(BUILD) --docs docs
+
+# Per-sample variance under a very bright HDR sun (Linear and Closest), Candela against Cycles in one run
+# (issue 22; about 1 minute): prints the ratios; exit status 1 while Candela's exceeds Cycles'.
+env-variance: build
+	$(CLEAN_ENV) $(PYTHON) tests/parity/env_variance.py --build $(BUILD)
 
 # docs/sampling.md and docs/sampling/*.png: one picture, error and time per sampling technique (~15 minutes;
 # the scenes' references are cached in build/sampling/cache).
