@@ -14,46 +14,80 @@ namespace candela {
 namespace {
 
 constexpr uint32_t k_max_width = 2048, k_default_width = 256, k_min_width = 32;
-constexpr float k_floor = 1e-3f;  // share of the mean weight every cell keeps
+constexpr uint32_t k_max_sub = 4;  // sub-samples per cell and axis, at most
+constexpr float k_floor = 1e-3f;   // share of the mean weight every cell keeps
 
-/// Bake width: the widest equirectangular image the program reads (clamped), else a default.
-uint32_t bake_width(const ShaderLibrary& lib, uint32_t program) {
-    uint32_t w = 0;
+/// The widest and tallest equirectangular image the program reads (0, 0: none).
+void image_size(const ShaderLibrary& lib, uint32_t program, uint32_t* w, uint32_t* h) {
+    *w = *h = 0;
     for (uint32_t r = 0; r < lib.program_size(program); ++r) {
         const ShaderOp& op = lib.op(program, r);
-        if (op.code == ShaderOpCode::Image || op.code == ShaderOpCode::ImageAlpha)
-            w = std::max(w, lib.textures()[op.i[0]].width);
+        if (op.code == ShaderOpCode::Image || op.code == ShaderOpCode::ImageAlpha) {
+            *w = std::max(*w, lib.textures()[op.i[0]].width);
+            *h = std::max(*h, lib.textures()[op.i[0]].height);
+        }
     }
-    if (w == 0) w = k_default_width;
+}
+
+/// Bake width: the image's width (clamped), else a default.
+uint32_t bake_width(uint32_t image_width) {
+    uint32_t w = image_width == 0 ? k_default_width : image_width;
     w = std::min(std::max(w, k_min_width), k_max_width);
     return w + (w & 1u);  // even, so that height = width/2 exactly
+}
+
+/// Sub-samples per cell along one axis: 2 per texel the cell spans (ceil), at most k_max_sub. With the bake at the
+/// image's resolution (cells = texels) the 2 × 2 points at a quarter and three quarters of the cell split it into
+/// four squares none of which crosses a texel centre, so the filtered image is bilinear on each and the midpoint
+/// rule gives its exact integral (Closest: the cell's one texel, exactly).
+uint32_t sub_samples(uint32_t texels, uint32_t cells) {
+    if (texels == 0) return 2;
+    return std::min(k_max_sub, 2 * ((texels + cells - 1) / cells));
 }
 
 }  // namespace
 
 EnvironmentMap::EnvironmentMap(std::shared_ptr<const ShaderLibrary> shaders, uint32_t program, uint32_t reg, int threads)
     : m_shaders(std::move(shaders)), m_program(program), m_reg(reg) {
-    const uint32_t nu = bake_width(*m_shaders, m_program), nv = nu / 2;
-    std::vector<Color> bake(size_t(nu) * nv);
+    uint32_t image_w = 0, image_h = 0;
+    image_size(*m_shaders, m_program, &image_w, &image_h);
+    const uint32_t nu = bake_width(image_w), nv = nu / 2;
+    const uint32_t su = sub_samples(image_w, nu), sv = sub_samples(image_h, nv);
+    // Cell (i, j)'s weight is the integral of luminance(L)·sin θ over the cell, by the midpoint rule on su × sv
+    // points: the integral of what is rendered (the filtered image), not its value at one point. One value per cell
+    // (its centre) misses the part of a bright texel's bilinear footprint that lies in the neighbouring cells — a
+    // sun of a few texels then sends 44 % of its light through cells weighted like the sky (issue 22: 40-160×
+    // Cycles' variance). Each row's radiance integral (exact sub-row solid angles) goes to the mean radiance.
+    std::vector<float> weights(size_t(nu) * nv);
+    std::vector<double> row_mean(size_t(nv) * 3, 0.0), row_total(nv, 0.0);
     parallel_for(threads, nv, [&](size_t j) {
-        const float v = (float(j) + 0.5f) / float(nv);
-        for (uint32_t i = 0; i < nu; ++i) bake[j * nu + i] = Le(equirectangular_to_direction((float(i) + 0.5f) / float(nu), v));
-    });
-    // Weights with the sin θ Jacobian; the mean radiance integrates the bake over exact cell solid angles.
-    std::vector<float> weights(bake.size());
-    double mean[3] = {0.0, 0.0, 0.0}, total = 0.0;
-    for (uint32_t j = 0; j < nv; ++j) {
-        const float theta = k_pi * (1.f - (float(j) + 0.5f) / float(nv));
-        const float sin_theta = std::sin(theta);
-        // Row j spans θ from π(1 − (j+1)/nv) to π(1 − j/nv).
-        const double cell_solid_angle = 2.0 * k_pi / nu *
-                                        (std::cos(k_pi * (1.0 - double(j + 1) / nv)) - std::cos(k_pi * (1.0 - double(j) / nv)));
+        double m[3] = {0.0, 0.0, 0.0}, t = 0.0;
         for (uint32_t i = 0; i < nu; ++i) {
-            const Color& c = bake[size_t(j) * nu + i];
-            weights[size_t(j) * nu + i] = std::fmax(luminance(c), 0.f) * sin_theta;
-            for (int k = 0; k < 3; ++k) mean[k] += double(c[k]) * cell_solid_angle;
-            total += weights[size_t(j) * nu + i];
+            double w = 0.0;
+            for (uint32_t b = 0; b < sv; ++b) {
+                const double v0 = (double(j) + double(b) / sv) / nv, v1 = (double(j) + double(b + 1) / sv) / nv;
+                const float v = float((double(j) + (b + 0.5) / sv) / nv);
+                const float sin_theta = std::sin(k_pi * (1.f - v));
+                // Sub-cell solid angle: θ from π(1 − v1) to π(1 − v0).
+                const double solid_angle = 2.0 * k_pi / (double(nu) * su) *
+                                           (std::cos(k_pi * (1.0 - v1)) - std::cos(k_pi * (1.0 - v0)));
+                for (uint32_t a = 0; a < su; ++a) {
+                    const float u = float((double(i) + (a + 0.5) / su) / nu);
+                    const Color c = Le(equirectangular_to_direction(u, v));
+                    w += double(std::fmax(luminance(c), 0.f)) * sin_theta;
+                    for (int k = 0; k < 3; ++k) m[k] += double(c[k]) * solid_angle;
+                }
+            }
+            weights[j * nu + i] = float(w / (double(su) * sv));
+            t += weights[j * nu + i];
         }
+        for (int k = 0; k < 3; ++k) row_mean[j * 3 + k] = m[k];
+        row_total[j] = t;
+    });
+    double mean[3] = {0.0, 0.0, 0.0}, total = 0.0;
+    for (uint32_t j = 0; j < nv; ++j) {  // in row order: the same sums for any thread count
+        for (int k = 0; k < 3; ++k) mean[k] += row_mean[size_t(j) * 3 + k];
+        total += row_total[j];
     }
     const float floor_weight = float(k_floor * total / double(weights.size()));
     for (float& w : weights) w += floor_weight;

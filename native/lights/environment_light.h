@@ -5,8 +5,11 @@
 // solid-angle pdf that MIS can combine with BSDF sampling (pbrt-v3 §14.2.4, "Infinite Area Lights").
 // The world shader is baked once into an equirectangular grid (Blender's mapping, u = ½ − φ/2π,
 // v = 1 − θ/π) at the resolution of the environment image it reads (at most 2048 × 1024). Cell (i, j) gets
-// the weight luminance(L(centre))·sin θ_j plus a floor of 10⁻³ of the mean, so every direction keeps a
-// positive density (the filtered image is non-zero a little beyond a bright texel's cell). A direction is
+// the weight ∫ luminance(L)·sin θ over the cell — the integral of the radiance as rendered, i.e. the filtered
+// image, by the midpoint rule on 2 × 2 points per texel the cell spans (exact for Linear and Closest filtering
+// when cells are texels: the four quarter cells do not cross a texel centre, so the bilinear image is bilinear
+// on each) — plus a floor of 10⁻³ of the mean, so every direction keeps a positive density. One value per cell
+// would miss the part of a bright texel's filtered footprint that reaches into its neighbours. A direction is
 // drawn from the 2-D piecewise-constant distribution over (u, v) and
 //     p_ω(ω) = p_uv(u, v) / (2π² sin θ)        (dω = sin θ dθ dφ = 2π² sin θ du dv).
 // The radiance itself is always the shader's exact value, never the bake, so the bake only shapes the

@@ -119,6 +119,29 @@ def write_test_hdr(path, width=256, height=128):
     return path
 
 
+def write_sun_hdr(path, width=256, height=128, sun=160000.0):
+    """An equirectangular sky of radiance ~1 (a mild gradient) with a 2 × 2-texel sun of `sun` at 40° elevation:
+    the case of issue 22 (a very bright sun of a few texels in an HDR). Written as flat (uncompressed) Radiance
+    RGBE by numpy: Blender's Image.save() of a generated float image lost the sun (the file's maximum was 4.9)."""
+    import numpy as np
+    v = (np.arange(height) + 0.5) / height                 # row 0 = bottom (Blender's pixel order)
+    rgb = np.ones((height, width, 3)) * np.array([0.9, 1.0, 1.1])
+    rgb *= (0.8 + 0.4 * v)[:, None, None]
+    sy, sx = int(height * (0.5 + 40.0 / 180.0)), int(width * 0.3)
+    rgb[sy:sy + 2, sx:sx + 2] = sun * np.array([1.0, 0.95, 0.85])
+    top_down = rgb[::-1].reshape(-1, 3)
+    m = top_down.max(axis=1)
+    mant, exp = np.frexp(m)                                # m = mant·2^exp, mant in [0.5, 1)
+    scale = np.where(m > 1e-32, mant * 256.0 / np.maximum(m, 1e-38), 0.0)
+    rgbe = np.zeros((top_down.shape[0], 4), np.uint8)
+    rgbe[:, :3] = np.clip(top_down * scale[:, None], 0, 255).astype(np.uint8)
+    rgbe[:, 3] = np.where(m > 1e-32, exp + 128, 0).astype(np.uint8)
+    with open(path, "wb") as f:
+        f.write(f"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n".encode())
+        f.write(rgbe.tobytes())
+    return path
+
+
 # ---------------------------------------------------------------------------------------------------------------
 # Scenes
 # ---------------------------------------------------------------------------------------------------------------
@@ -224,6 +247,26 @@ def build_environment_hdr(scene, out_dir=".", **kw):
     return build_environment(scene, hdr_path=path, **kw)
 
 
+def _sun_hdr_scene(interpolation):
+    """A diffuse floor and sphere lit only by write_sun_hdr's sky through an Environment Texture with
+    `interpolation` (Linear is Blender's default): the per-sample variance test of issue 22
+    (tests/parity/env_variance.py)."""
+    def build(scene, out_dir=".", **_):
+        import os
+        path = os.path.join(out_dir, "sun_sky.hdr")
+        if not os.path.exists(path):
+            write_sun_hdr(path)
+        ex.rectangle(scene, "Floor", ex.diffuse("Floor", (0.7, 0.7, 0.7)), Matrix.Diagonal((5, 5, 1, 1)))
+        ex.sphere(scene, "Diffuse", ex.diffuse("Diffuse", (0.8, 0.4, 0.2)), (0.0, 0.0, 0.6), 0.6)
+        ex.camera(scene, (0.0, -5.0, 2.2), (72.0, 0.0, 0.0), lens=40.0)
+        world = environment_world(scene, (1.0, 1.0, 1.0), 1.0, path)
+        for node in world.node_tree.nodes:
+            if node.bl_idname == "ShaderNodeTexEnvironment":
+                node.interpolation = interpolation
+        return 1.5
+    return build
+
+
 def _lights():
     h = LIGHT_HEIGHT
     return {
@@ -258,7 +301,8 @@ SCENES.update({
 })
 # Not in the default list until Candela reads Environment Texture nodes (issue #3, h-textures): run it with
 # `--scenes environment_hdr`, then add it to parity.py's ALL_SCENES.
-EXTRA_SCENES = {"environment_hdr": build_environment_hdr}
+EXTRA_SCENES = {"environment_hdr": build_environment_hdr,
+                "sun_hdr_linear": _sun_hdr_scene("Linear"), "sun_hdr_closest": _sun_hdr_scene("Closest")}
 # Per-node scenes (tests/parity/node_scenes.py): run by `parity.py --nodes`.
 NODE_SCENES = {name: (lambda n: lambda scene, size=128, out_dir=".": node_scenes.build_node_scene(
     n, scene, size=size, out_dir=out_dir))(name) for name in node_scenes.ALL_NODE_SCENES}
