@@ -60,6 +60,7 @@ float continuation_pdf(HemisphereSampling mode, const Bsdf& bsdf, const Vec3& wo
 Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov) const {
     Color L(0.f);
     *alpha = 1.f;
+    if (!(camera_ray.tmax > camera_ray.tmin)) return L;  // outside a fisheye's image circle: nothing (Cycles)
     PathState st;
     st.aov = aov;
     std::visit([&](auto& concrete) { trace(camera_ray, st, 0, concrete, stats, L, alpha); }, sampler);
@@ -70,6 +71,7 @@ Color PathTracer::Li(const Ray& camera_ray, const TracedHit& first, Sampler& sam
                      AovSample* aov) const {
     Color L(0.f);
     *alpha = 1.f;
+    if (!(camera_ray.tmax > camera_ray.tmin)) return L;  // outside a fisheye's image circle: nothing (Cycles)
     PathState st;
     st.aov = aov;
     std::visit([&](auto& concrete) { trace(camera_ray, st, 0, concrete, stats, L, alpha, &first); }, sampler);
