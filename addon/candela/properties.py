@@ -118,6 +118,13 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
         name="Noise Threshold", description="Stop once the estimated relative error (RMSE / mean) of the whole "
         "image is below this with a confidence margin; 0 = off. Checked from 16 samples per pixel on", default=0.0, min=0.0, max=0.5,
         soft_max=0.1, precision=3, step=0.1)
+    viewport_samples: IntProperty(
+        name="Viewport Samples", description="Samples per pixel the Rendered viewport refines to; 0 = until the "
+        "view changes", default=1024, min=0, soft_max=4096)
+    viewport_start_resolution: IntProperty(
+        name="Start Resolution", description="After a change the viewport first renders with at most this many "
+        "pixels across (squared: in total), then doubles the resolution up to the full view, so moving the view "
+        "shows an image at once", default=64, min=8, max=16384, subtype='PIXEL')
     # integrator: added in register(), its items come from the native module loaded by then
 
 

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "bsdf/material_inputs.h"
 #include "scene/coplanar_overlap.h"
+#include "scene/mesh_bvh_cache.h"
 #include "input/scene_arrays.h"
 #include "scene/scene_parts.h"
 
@@ -38,8 +39,9 @@ struct MeshRange {
 
 }  // namespace
 
-Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel)
-    : m_device(params.get<int>("threads", 0)), m_camera(params, camera_matrix(arrays)) {
+Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel, MeshBvhCache* cache)
+    : m_device(cache ? cache->device() : std::make_shared<EmbreeDevice>(params.get<int>("threads", 0))),
+      m_camera(params, camera_matrix(arrays)) {
     m_offset = -m_camera.position();
     m_camera.translate(m_offset);
     m_materials = load_materials(arrays);
@@ -51,12 +53,18 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
     for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
     for (const MaterialInputs& mi : m_material_inputs) m_has_holdouts |= mi.holdout_reg >= 0;
     m_threads = params.get<int>("threads", 0);
-    build(arrays, cancel);
+    build(arrays, cancel, cache);
+}
+
+void Scene::set_camera(const Params& params, const Affine& camera_to_world) {
+    Camera camera(params, camera_to_world);
+    camera.translate(m_offset);  // into the camera-world space the scene was built in
+    m_camera = camera;
 }
 
 Scene::~Scene() = default;
 
-void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
+void Scene::build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache) {
     const float* positions = arrays.get("positions").data<float>();
     const uint32_t* triangles = arrays.get("triangles").data<uint32_t>();
     const uint32_t* tri_material = arrays.get("tri_material").data<uint32_t>();
@@ -127,14 +135,14 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     // `coplanar`: the geometry gets the coplanar tie-break filter.
     auto make_geometry = [&](uint32_t m, const Affine& to_space, float* magnitude, bool coplanar) {
         const MeshRange& r = ranges[m];
-        RTCGeometry g = rtcNewGeometry(m_device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        RTCGeometry g = rtcNewGeometry(m_device->get(), RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);  // the object's own BVH (see the top scene below)
         const size_t nv = r.vert_end - r.vert_begin, nt = r.tri_end - r.tri_begin;
         auto* vb = static_cast<float*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
         auto* ib = static_cast<uint32_t*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), nt));
-        m_device.check("allocating geometry buffers");
+        m_device->check("allocating geometry buffers");
         for (size_t v = 0; v < nv; ++v) {
             const float* p = positions + 3 * (r.vert_begin + v);
             const Vec3 q = to_space.point(Vec3(p[0], p[1], p[2]));
@@ -235,7 +243,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         }
     const RTCSceneFlags scene_flags = m_hidden_from ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : RTC_SCENE_FLAG_NONE;
 
-    m_top = EmbreeScene(rtcNewScene(m_device.get()));
+    m_top = EmbreeScene(rtcNewScene(m_device->get()));
     rtcSetSceneBuildQuality(m_top.get(), RTC_BUILD_QUALITY_LOW);  // two levels: a BVH per object, one over them
     rtcSetSceneFlags(m_top.get(), scene_flags);
     rtcSetSceneProgressMonitorFunction(m_top.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
@@ -259,7 +267,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         pl.world_to_object = xf.inverse();
         const size_t n = ranges[m].tri_end - ranges[m].tri_begin;
         m_stats.instanced_triangles += n;
-        if (uses[m] == 1) {
+        if (uses[m] == 1 && !cache) {
             // Single use: flatten into world space, no instancing indirection at render time.
             const Affine nxf = xf.normal_matrix();
             m_shading[m] = make_shading(m, &nxf);
@@ -275,24 +283,38 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         } else {
             if (mesh_scene[m] < 0) {
                 m_shading[m] = make_shading(m, nullptr);
-                EmbreeScene s(rtcNewScene(m_device.get()));
-                rtcSetSceneBuildQuality(s.get(), RTC_BUILD_QUALITY_HIGH);
-                rtcSetSceneFlags(s.get(), scene_flags);
-                rtcSetSceneProgressMonitorFunction(s.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
-                float unused = 0.f;
-                RTCGeometry g = make_geometry(m, Affine(), &unused, mesh_coplanar[m] != 0);
-                rtcAttachGeometry(s.get(), g);
-                rtcReleaseGeometry(g);
-                rtcCommitScene(s.get());
-                if (cancel && cancel->cancelled()) throw Cancelled();
-                m_device.check("building a mesh BVH");
+                // What the BVH depends on besides the vertices and triangles: the filters set on it.
+                const uint32_t bvh_flags = uint32_t(scene_flags) << 1 | uint32_t(mesh_coplanar[m] != 0);
+                const MeshRange& r = ranges[m];
+                const MeshBvhCache::Key key =
+                    cache ? MeshBvhCache::key(positions + 3 * size_t(r.vert_begin), r.vert_end - r.vert_begin,
+                                              triangles + 3 * size_t(r.tri_begin), r.tri_end - r.tri_begin,
+                                              r.vert_begin, bvh_flags)
+                          : MeshBvhCache::Key{};
+                std::shared_ptr<EmbreeScene> s = cache ? cache->find(key) : nullptr;
+                if (!s) {
+                    s = std::make_shared<EmbreeScene>(rtcNewScene(m_device->get()));
+                    rtcSetSceneBuildQuality(s->get(), RTC_BUILD_QUALITY_HIGH);
+                    rtcSetSceneFlags(s->get(), scene_flags);
+                    rtcSetSceneProgressMonitorFunction(s->get(), &progress_monitor, const_cast<CancelToken*>(cancel));
+                    float unused = 0.f;
+                    RTCGeometry g = make_geometry(m, Affine(), &unused, mesh_coplanar[m] != 0);
+                    rtcAttachGeometry(s->get(), g);
+                    rtcReleaseGeometry(g);
+                    rtcCommitScene(s->get());
+                    // The cancel token belongs to this build: a kept BVH must not point at it.
+                    rtcSetSceneProgressMonitorFunction(s->get(), nullptr, nullptr);
+                    if (cancel && cancel->cancelled()) throw Cancelled();
+                    m_device->check("building a mesh BVH");
+                    if (cache) cache->insert(key, s);
+                }
                 mesh_scene[m] = static_cast<int32_t>(m_mesh_scenes.size());
                 m_mesh_scenes.push_back(std::move(s));
                 m_stats.unique_triangles += n;
                 ++m_stats.meshes;
             }
-            RTCGeometry inst = rtcNewGeometry(m_device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
-            rtcSetGeometryInstancedScene(inst, m_mesh_scenes[mesh_scene[m]].get());
+            RTCGeometry inst = rtcNewGeometry(m_device->get(), RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(inst, m_mesh_scenes[mesh_scene[m]]->get());
             rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &xf.m[0][0]);
             rtcCommitGeometry(inst);
             const unsigned id = rtcAttachGeometry(m_top.get(), inst);
@@ -302,7 +324,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
             pl.light_base = add_triangle_lights(m, xf, m_shading[m], pl, id);
             // Camera-world magnitude of the instance: its object-space bounds' corners, transformed.
             RTCBounds ob;
-            rtcGetSceneBounds(m_mesh_scenes[mesh_scene[m]].get(), &ob);
+            rtcGetSceneBounds(m_mesh_scenes[mesh_scene[m]]->get(), &ob);
             for (int corner = 0; corner < 8; ++corner) {
                 const Vec3 q = xf.point(Vec3(corner & 1 ? ob.upper_x : ob.lower_x, corner & 2 ? ob.upper_y : ob.lower_y,
                                              corner & 4 ? ob.upper_z : ob.lower_z));
@@ -316,7 +338,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
     }
     rtcCommitScene(m_top.get());
     if (cancel && cancel->cancelled()) throw Cancelled();
-    m_device.check("building the scene BVH");
+    m_device->check("building the scene BVH");
 
     RTCBounds b;
     rtcGetSceneBounds(m_top.get(), &b);
@@ -342,7 +364,7 @@ void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
         m_stats.shading_bytes += s.material.capacity() * sizeof(uint32_t) + s.smooth.capacity() +
                                  s.normals.capacity() * sizeof(Vec3) + s.emissive_rank.capacity() * sizeof(int32_t);
     m_stats.shading_bytes += m_placements.capacity() * sizeof(Placement);
-    m_stats.embree_bytes = size_t(std::max<int64_t>(m_device.bytes(), 0));
+    m_stats.embree_bytes = size_t(std::max<int64_t>(m_device->bytes(), 0));
 }
 
 }  // namespace candela

@@ -24,6 +24,7 @@
 namespace candela {
 
 class SceneArrays;
+class MeshBvhCache;
 
 struct SceneStats {
     size_t unique_triangles = 0;    // stored once each
@@ -38,7 +39,10 @@ class Scene : private EmissionSource {
 public:
     /// Builds the scene; throws InvalidScene/InvalidParameter for bad input and Cancelled if `cancel`
     /// fires during the BVH build. `arrays` must have been validated.
-    Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel);
+    /// With a `cache` (the 3D viewport), every mesh is instanced and the meshes' object-space BVHs come from the
+    /// cache where it has them (scene/mesh_bvh_cache.h), so a build after a transform-only edit builds only the
+    /// top-level BVH; the scene then uses the cache's Embree device.
+    Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel, MeshBvhCache* cache = nullptr);
     ~Scene() override;
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
@@ -72,6 +76,10 @@ public:
     ShadingPoint shade(const SurfaceHit& hit, const Vec3& wo) const;
 
     const Camera& camera() const { return m_camera; }
+    /// Replaces the camera (camera params as the constructor reads them; camera_to_world rigid, in world space):
+    /// the viewport renders one built scene through many views and film sizes. Only while no integrator renders
+    /// this scene.
+    void set_camera(const Params& params, const Affine& camera_to_world);
     const std::vector<Material>& materials() const { return m_materials; }
     const LightSet& lights() const { return m_lights; }
     float radius() const { return m_radius; }
@@ -96,7 +104,7 @@ private:
     struct MeshShading;
     struct Placement;
     struct QueryContext;
-    void build(const SceneArrays& arrays, const CancelToken* cancel);
+    void build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache);
     /// The SurfaceHit of Embree's hit (geometry, triangle, instance ids, barycentrics, unnormalised Ng) at
     /// distance t along `ray`.
     void decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t inst, float u, float v, const Vec3& ng_embree,
@@ -128,9 +136,9 @@ private:
     // EmissionSource: textured emitter `id` (a row of m_emitters).
     Color emission(uint32_t id, const Vec3& p, const Vec3& ng, float b1, float b2, const Vec3& wo) const override;
 
-    EmbreeDevice m_device;
+    std::shared_ptr<EmbreeDevice> m_device;  // own, or a MeshBvhCache's (declared first: released last)
     EmbreeScene m_top;
-    std::vector<EmbreeScene> m_mesh_scenes;  // one per instanced mesh
+    std::vector<std::shared_ptr<EmbreeScene>> m_mesh_scenes;  // one per instanced mesh (shared with a cache)
     std::vector<MeshShading> m_shading;      // per mesh (world space if flattened)
     std::vector<Placement> m_placements;     // per top-level geometry id
     struct Emitter {

@@ -95,7 +95,8 @@ void Session::run() {
             m_stats.scene = scene.stats();
             m_phase = SessionPhase::Rendering;
             m_render_start = t1;
-            if (scene.lights().empty()) m_log.push_back("the scene has no lights and a black world: the image is black");
+            if (scene.lights().empty() && is_black(scene.lights().background()))
+                m_log.push_back("the scene has no lights and a black world: the image is black");
         }
         RenderContext ctx{m_cancel, m_counters, m_threads, m_aovs.get()};
         m_integrator->render(scene, *m_film, ctx);

@@ -25,6 +25,22 @@ class CANDELA_RENDER_PT_sampling(CandelaPanel, bpy.types.Panel):
         row.prop(settings, "use_animated_seed", text="", icon='TIME')
 
 
+class CANDELA_RENDER_PT_sampling_viewport(CandelaPanel, bpy.types.Panel):
+    bl_context = "render"
+    bl_label = "Viewport"
+    bl_parent_id = "CANDELA_RENDER_PT_sampling"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.candela
+        col = layout.column()
+        col.prop(settings, "viewport_samples", text="Samples")
+        col.prop(settings, "viewport_start_resolution")
+        col.prop(context.scene.render, "preview_pixel_size", text="Pixel Size")
+
+
 class CANDELA_RENDER_PT_light_paths(CandelaPanel, bpy.types.Panel):
     bl_context = "render"
     bl_label = "Light Paths"
@@ -87,5 +103,5 @@ class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
         col.prop(context.scene.render, "film_transparent", text="Transparent")
 
 
-classes = (CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_light_paths, CANDELA_RENDER_PT_light_sampling,
+classes = (CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_sampling_viewport, CANDELA_RENDER_PT_light_paths, CANDELA_RENDER_PT_light_sampling,
            CANDELA_RENDER_PT_film)
