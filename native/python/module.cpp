@@ -15,6 +15,7 @@
 #include "lights/light.h"
 #include "sampling/sampler.h"
 #include "scene/ray_visibility.h"
+#include "session/memory_estimate.h"
 #include "session/session.h"
 #include "session/viewport_session.h"
 #include "texture/node_math.h"
@@ -140,6 +141,7 @@ py::dict capabilities() {
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;
+    d["film_bytes_per_pixel"] = film_bytes_per_pixel();  // for the memory figure in Blender's header
     return d;
 }
 

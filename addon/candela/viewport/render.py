@@ -18,6 +18,7 @@ import bpy
 from .. import native
 from ..export import ExportError, Warnings, export_scene
 from ..params import to_native_params
+from ..unsupported import ignored_settings
 from .display import Display
 from .scene_sync import MeshCache, classify, instance_signature
 from .view_camera import view_camera
@@ -155,6 +156,8 @@ class ViewportRender:
             camera = None if matrix is not None else depsgraph.scene.camera
             arrays = export_scene(depsgraph, camera, warnings=warnings, mesh_reader=self.meshes.read,
                                   camera_matrix=matrix)
+            for message in ignored_settings(depsgraph):
+                warnings.add(message)
             self.meshes.end_export()
             self.session.update_scene(arrays, settings)
             self.error = None
