@@ -80,11 +80,10 @@ robustness-report: build
 microbench: build
 	$(BUILD)/bin/candela_microbench
 
-# Installs the built add-on (with its native module) into the user's Blender 3.4 add-on folder.
+# Installs the built add-on (with its native module) into the user's Blender 3.4 add-on folder, after checking
+# that the copy is complete and its native module loads (bin/install-addon: a truncated .so crashes Blender).
 install-addon: build
-	@dest="$${BLENDER_USER_SCRIPTS:-$$HOME/.config/blender/3.4/scripts}/addons/candela"; \
-	rm -rf "$$dest" && mkdir -p "$$(dirname "$$dest")" && cp -r $(BUILD)/scripts/addons/candela "$$dest" && \
-	echo "Installed to $$dest; enable 'Render: Candela' in Edit > Preferences > Add-ons (or run blender --addons candela)"
+	$(CLEAN_ENV) $(PYTHON) bin/install-addon --build $(BUILD)
 
 clean:
 	rm -rf $(BUILD) out

@@ -35,13 +35,15 @@ def integrator_items():
 
 
 HEMISPHERE_SAMPLING = [
-    ("UNIFORM", "Uniform", "Continue paths in uniformly distributed directions over the hemisphere", 0),
+    ("UNIFORM", "Uniform", "Continue paths in uniformly distributed directions over the hemisphere. Teaching "
+     "option: noisier than BSDF sampling at the same cost", 0),
     ("COSINE", "Cosine", "Continue paths cosine-weighted over the hemisphere", 1),
     ("BSDF", "BSDF", "Continue paths proportionally to the BSDF times the cosine (importance sampling)", 2),
 ]
 LIGHT_SAMPLING = [
     ("BSDF_ONLY", "BSDF Only", "Direct light only where continuation rays hit emitters (point, spot and sun "
-     "lights are still light-sampled: no ray can hit them)", 0),
+     "lights are still light-sampled: no ray can hit them). Teaching option: much noisier than Multiple "
+     "Importance for small lights", 0),
     ("LIGHT_ONLY", "Light Only", "Direct light only by next-event estimation (shadow rays to sampled lights)", 1),
     ("MIS", "Multiple Importance", "Both, combined by multiple importance sampling", 2),
 ]
@@ -50,7 +52,8 @@ MIS_HEURISTICS = [
     ("POWER", "Power", "Power heuristic with exponent 2 (Veach 1997, eq. 9.13)", 1),
 ]
 LIGHT_PDFS = [
-    ("AREA", "Area", "Sample points uniformly on the emitter's area", 0),
+    ("AREA", "Area", "Sample points uniformly on the emitter's area. Teaching option: noisier than Solid "
+     "Angle for nearby lights", 0),
     ("SOLID_ANGLE", "Solid Angle", "Sample directions uniformly in the solid angle the emitter covers "
      "(spherical triangles and rectangles), with area sampling for tiny and huge solid angles", 1),
 ]
@@ -115,8 +118,10 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
         "even if not all samples are done; 0 = no limit. Renders then differ between machines", default=0.0,
         min=0.0, soft_max=3600.0, subtype='TIME_ABSOLUTE', unit='TIME_ABSOLUTE')
     noise_threshold: FloatProperty(
-        name="Noise Threshold", description="Stop once the estimated relative error (RMSE / mean) of the whole "
-        "image is below this with a confidence margin; 0 = off. Checked from 16 samples per pixel on", default=0.0, min=0.0, max=0.5,
+        name="Image Noise Stop", description="Stop the whole render once the estimated relative error (RMSE / "
+        "mean) of the whole image is below this, with a confidence margin; 0 = off. Checked from 16 samples per "
+        "pixel on. Not Cycles' Noise Threshold, which is per-pixel adaptive sampling (typically 0.01): here 0.01 "
+        "asks for 1 % error over the whole image, a long render", default=0.0, min=0.0, max=0.5,
         soft_max=0.1, precision=3, step=0.1)
     viewport_samples: IntProperty(
         name="Viewport Samples", description="Samples per pixel the Rendered viewport refines to; 0 = until the "

@@ -25,7 +25,7 @@ DEFAULT_BASE = (0.8, 0.8, 0.8)   # no material at all: Blender's default grey
 SUPPORTED_SHADER_NODES = ("ShaderNodeAddShader", "ShaderNodeBsdfAnisotropic", "ShaderNodeBsdfDiffuse",
                           "ShaderNodeBsdfGlass", "ShaderNodeBsdfGlossy", "ShaderNodeBsdfPrincipled",
                           "ShaderNodeBsdfRefraction", "ShaderNodeBsdfTranslucent", "ShaderNodeBsdfTransparent",
-                          "ShaderNodeEmission", "ShaderNodeMixShader")
+                          "ShaderNodeEmission", "ShaderNodeHoldout", "ShaderNodeMixShader")
 COLOR_GROUPS = ("weight", "color", "subsurface")   # closure values spread over the columns NAME_r, NAME_g, NAME_b
 PLACEHOLDER = {"ior": 1.45}   # row value under a bound (varying) column; must pass the native row checks
 

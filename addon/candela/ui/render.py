@@ -103,5 +103,29 @@ class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
         col.prop(context.scene.render, "film_transparent", text="Transparent")
 
 
+class CANDELA_RENDER_PT_simplify(CandelaPanel, bpy.types.Panel):
+    """Blender's Simplify settings (subdivision and child particles are applied by Blender's evaluation, which
+    Candela renders), drawn after Sampling like Cycles' (Blender's own panel would come first: ui/compat.py)."""
+    bl_context = "render"
+    bl_label = "Simplify"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.render, "use_simplify", text="")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        rd = context.scene.render
+        layout.active = rd.use_simplify
+        col = layout.column(heading="Viewport")
+        col.prop(rd, "simplify_subdivision", text="Max Subdivision")
+        col.prop(rd, "simplify_child_particles", text="Child Particles")
+        col = layout.column(heading="Render")
+        col.prop(rd, "simplify_subdivision_render", text="Max Subdivision")
+        col.prop(rd, "simplify_child_particles_render", text="Child Particles")
+
+
 classes = (CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_sampling_viewport, CANDELA_RENDER_PT_light_paths, CANDELA_RENDER_PT_light_sampling,
-           CANDELA_RENDER_PT_film)
+           CANDELA_RENDER_PT_film, CANDELA_RENDER_PT_simplify)
