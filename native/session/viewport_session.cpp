@@ -88,6 +88,7 @@ void ViewportSession::update_scene(SceneArrays arrays, Params settings) {
     ++m_restarts;
     m_render_cancel->cancel();
     m_build_cancel->cancel();  // a newer scene supersedes the one being built
+    m_status.phase = "pending";
     m_status.error.reset();
     m_build_error.reset();
     m_cv.notify_all();
@@ -101,6 +102,7 @@ void ViewportSession::update_settings(Params settings) {
     m_paused = false;
     ++m_restarts;
     m_render_cancel->cancel();
+    m_status.phase = "pending";
     m_status.error.reset();
     m_cv.notify_all();
 }
@@ -119,6 +121,7 @@ void ViewportSession::set_view(Params view, const Affine& camera_to_world) {
     m_paused = false;
     ++m_restarts;
     m_render_cancel->cancel();  // the scene build (if any) goes on: the view does not change the scene
+    if (m_status.phase != "building") m_status.phase = "pending";
     m_status.error.reset();
     m_cv.notify_all();
 }

@@ -50,7 +50,7 @@ struct ViewportImage {
 };
 
 struct ViewportStatus {
-    std::string phase = "idle";  // idle, building, rendering, done, failed, stopped
+    std::string phase = "idle";  // idle, pending (a request not taken yet), building, rendering, done, failed, stopped
     int samples_done = 0, samples_total = 0;
     int pixel_size = 0;          // of the level being rendered
     double build_seconds = 0.0;  // of the latest scene build

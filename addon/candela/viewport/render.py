@@ -186,6 +186,8 @@ class ViewportRender:
         phase = status["phase"]
         if phase == "building":
             text = "Building scene"
+        elif phase == "pending":
+            text = "Updating"
         elif phase in ("rendering", "done"):
             total = status["samples_total"]
             done = status["samples_done"] if status["pixel_size"] <= 1 or phase == "done" else 0

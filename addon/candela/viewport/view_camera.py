@@ -8,7 +8,8 @@
   field, zoomed by Blender's camera-view zoom 2 / (√2 + zoom/50)² (×2) and panned by 2 · view_camera_offset; a
   panoramic camera instead maps the viewport to the part of the panorama inside the camera frame.
 
-The matrix is always the view's (view_matrix inverted: −Z forward, +Y up, as a camera object). Borders: the
+The matrix is the view's (view_matrix inverted: −Z forward, +Y up, as a camera object), in camera view the
+camera's own (the same, without waiting for the view to be redrawn). Borders: the
 camera view honours the render border (inside the camera frame), other views the view's own render region.
 """
 
@@ -77,9 +78,11 @@ def camera_frame(region_size, render_size, cam, zoom, offset):
 
 
 def _border(x0, y0, x1, y1, width, height):
-    """A border window clamped to the view, in whole pixels; None when it is empty."""
-    bx0, by0 = max(0, int(math.floor(x0))), max(0, int(math.floor(y0)))
-    bx1, by1 = min(width, int(math.ceil(x1))), min(height, int(math.ceil(y1)))
+    """A border window clamped to the view, in whole pixels (every pixel it covers, up to float rounding of its
+    edges); None when it is empty."""
+    eps = 1e-4
+    bx0, by0 = max(0, int(math.floor(x0 + eps))), max(0, int(math.floor(y0 + eps)))
+    bx1, by1 = min(width, int(math.ceil(x1 - eps))), min(height, int(math.ceil(y1 - eps)))
     return (bx0, by0, bx1, by1) if bx1 > bx0 and by1 > by0 else None
 
 
@@ -87,7 +90,7 @@ def view_camera(scene, depsgraph, space, rv3d, width, height, render_size):
     """The ViewCamera of one 3D view of `width` × `height` pixels; `render_size` is the render's frame (for the
     camera frame in camera view)."""
     notes = []
-    matrix = camera_to_world(rv3d.view_matrix.inverted())
+    matrix = None
     params = {"width": int(width), "height": int(height), "pixel_aspect_x": 1.0, "pixel_aspect_y": 1.0,
               "use_dof": False, "view_zoom": 2.0, "view_offset_x": 0.0, "view_offset_y": 0.0}
     crop = None
@@ -99,6 +102,7 @@ def view_camera(scene, depsgraph, space, rv3d, width, height, render_size):
     if camera is not None:
         cam_eval = camera.evaluated_get(depsgraph)
         cam = cam_eval.data
+        matrix = camera_to_world(cam_eval.matrix_world)   # what the camera view shows (its view matrix is this)
         params.update(camera_params(cam))
         params.update(dof_params(cam, cam_eval))
         zoom = camera_view_zoom(rv3d.view_camera_zoom)
@@ -129,5 +133,7 @@ def view_camera(scene, depsgraph, space, rv3d, width, height, render_size):
                        space.render_border_max_x * width, space.render_border_max_y * height, width, height)
     if crop is not None:
         params.update(crop_x0=crop[0], crop_y0=crop[1], crop_x1=crop[2], crop_y1=crop[3])
+    if matrix is None:
+        matrix = camera_to_world(rv3d.view_matrix.inverted())
     params = {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in params.items()}
     return ViewCamera(params, np.ascontiguousarray(matrix, np.float32), notes)
