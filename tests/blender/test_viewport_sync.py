@@ -153,10 +153,10 @@ def test_camera_view_honours_zoom_offset_and_border():
     r = scene.render
     r.use_border, r.border_min_x, r.border_max_x, r.border_min_y, r.border_max_y = True, 0.25, 0.75, 0.2, 0.6
     # Blender's camera-view zoom 0: the viewplane is scaled by 2·2/(√2)² = 2, so the 40x30 frame covers 40x30
-    # pixels of an 80x60 view, centred. A pan of view_camera_offset 0.125 moves the viewplane by
-    # 2·(2·0.125)·2·xaspect, a quarter of its width (and height): the frame moves to the view's corner, where its
-    # pixels are the view's pixels (and draw the same samples).
-    image = viewport_image(scene, SPACE, camera_view(0.0, (0.125, 0.125)), 80, 60)
+    # pixels of an 80x60 view, centred. A pan of view_camera_offset 0.25 moves the viewplane by 4·0.25·xaspect,
+    # a quarter of its width (and height): the frame moves to the view's corner, where its pixels are the view's
+    # pixels (and draw the same samples).
+    image = viewport_image(scene, SPACE, camera_view(0.0, (0.25, 0.25)), 80, 60)
     final = final_image(scene)
     # The frame spans x ∈ [0, 40), y ∈ [0, 30) of the view; the border is x ∈ [10, 30), y ∈ [6, 18).
     assert (image["x0"], image["y0"], image["width"], image["height"]) == (10, 6, 20, 12), image

@@ -78,6 +78,7 @@ class ViewportRender:
         self.restart_time = time.monotonic()
         self.closed = False
         self.exports = 0
+        self.pixel_size = 1        # of the finest level (Blender's viewport pixel size)
         _live.add(self)
         _ensure_timer()
 
@@ -113,7 +114,7 @@ class ViewportRender:
                        max(1, render.resolution_y * render.resolution_percentage // 100) * render.pixel_aspect_y)
         try:
             view = view_camera(scene, depsgraph, space, rv3d, region.width, region.height, render_size)
-            view.params["pixel_size"] = int(self.engine.get_preview_pixel_size(scene))
+            view.params["pixel_size"] = self.pixel_size = int(self.engine.get_preview_pixel_size(scene))
             view.params["start_resolution"] = int(scene.candela.viewport_start_resolution)
             key = view.key()
             if key != self.view_key:
@@ -137,6 +138,7 @@ class ViewportRender:
         if self.closed:
             return
         try:
+            self.engine.is_preview   # raises ReferenceError once Blender freed the engine (even if idle)
             for message in self.session.take_log():
                 self._warn(f"Candela: {message}")
             fresh = self.session.image_version() != self.display.version

@@ -5,7 +5,7 @@
 - an orthographic view: ortho_scale = view distance · 36 / lens, rays from half the clip end behind the view
   (clip_start = −clip_end/2) to half in front;
 - the camera view: the scene camera (or the view's local camera) with its lens, sensor, shift and depth of
-  field, zoomed by Blender's camera-view zoom 2 / (√2 + zoom/50)² (×2) and panned by 2 · view_camera_offset; a
+  field, zoomed by Blender's camera-view zoom 2 / (√2 + zoom/50)² (×2) and panned by view_camera_offset; a
   panoramic camera instead maps the viewport to the part of the panorama inside the camera frame.
 
 The matrix is the view's (view_matrix inverted: −Z forward, +Y up, as a camera object), in camera view the
@@ -106,7 +106,10 @@ def view_camera(scene, depsgraph, space, rv3d, width, height, render_size):
         params.update(camera_params(cam))
         params.update(dof_params(cam, cam_eval))
         zoom = camera_view_zoom(rv3d.view_camera_zoom)
-        offset = (2.0 * rv3d.view_camera_offset[0], 2.0 * rv3d.view_camera_offset[1])
+        # The native camera's pan (Cycles' viewplane offset, dx = 4·offset·xaspect): Blender's camera view
+        # moves the frame by 2·view_camera_offset of the unzoomed viewplane's extent, i.e. offset =
+        # view_camera_offset (checked against Blender's own projection in tests/blender/gui_viewport.py).
+        offset = (float(rv3d.view_camera_offset[0]), float(rv3d.view_camera_offset[1]))
         frame = camera_frame((width, height), render_size, cam, zoom, offset)
         if cam.type == 'PANO':
             # The viewport shows the part of the panorama inside the camera frame (Cycles' pano_viewplane).

@@ -1,0 +1,97 @@
+"""Runs one GUI test script in Blender's real window under Xvfb with Mesa's software OpenGL:
+
+    /usr/bin/python3.11 tests/blender/gui_run.py tests/blender/gui_viewport.py [--keep DIR]
+
+1. builds the test scene in `blender -b` (gui_scene.py) and saves it (opening a file skips the splash screen);
+2. starts Blender on it in an Xvfb display (xvfb-run, 1600x1000, 24 bit, its framebuffer in a file the script
+   can read: gui_steps.py) with the script, which steps through its checks on a timer and writes a JSON verdict;
+3. passes if Blender exited normally (no crash, also not while quitting with a viewport rendering), printed no
+   Python traceback and every check passed.
+
+Exit status 77 (ctest's SKIP_RETURN_CODE) only when no X display can be started here (no xvfb-run or Xvfb, or
+Xvfb refusing to start), with a message saying so.
+"""
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+REPO = HERE.parents[1]
+SKIP = 77
+
+
+def skip(message):
+    print(f"SKIPPED: {message}")
+    sys.exit(SKIP)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("script")
+    parser.add_argument("--keep", default=None, help="keep screenshots and logs in this directory")
+    parser.add_argument("--timeout", type=float, default=400.0)
+    args = parser.parse_args()
+    if shutil.which("xvfb-run") is None or shutil.which("Xvfb") is None:
+        skip("no X display can be started: xvfb-run/Xvfb are not installed (make deps installs Debian's xvfb)")
+    work = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="candela-gui-"))
+    work.mkdir(parents=True, exist_ok=True)
+    (work / "fb").mkdir(exist_ok=True)
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV")}
+    env["CANDELA_GUI_DIR"] = str(work)
+    blender = [str(REPO / "bin" / "candela-blender"), "--factory-startup", "-noaudio"]
+    blend = work / "scene.blend"
+    setup = subprocess.run(blender + ["-b", "--python-exit-code", "1", "--python", str(HERE / "gui_scene.py"), "--",
+                                      str(blend)], env=env, capture_output=True, text=True, timeout=300)
+    if setup.returncode != 0 or not blend.exists():
+        print(setup.stdout[-4000:], setup.stderr[-4000:])
+        print("FAILED: could not build the GUI test scene")
+        return 1
+    result = work / "result.json"
+    if result.exists():
+        result.unlink()
+    cmd = ["xvfb-run", "-a", "-s", f"-screen 0 1600x1000x24 -fbdir {work / 'fb'}"] + blender + \
+          [str(blend), "--python", str(HERE / args.script)]
+    try:
+        proc = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=args.timeout)
+    except subprocess.TimeoutExpired as e:
+        out = (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
+        print(out[-6000:])
+        print(f"FAILED: Blender did not finish within {args.timeout:.0f} s (a hang)")
+        return 1
+    output = proc.stdout + proc.stderr
+    (work / "blender.log").write_text(output)
+    if "Xvfb failed to start" in output or "cannot open display" in output.lower():
+        skip(f"no X display can be started here (xvfb-run: {output.strip().splitlines()[-1] if output else ''})")
+    failures = []
+    if proc.returncode != 0:
+        failures.append(f"Blender exited with status {proc.returncode} (a crash, or a crash while quitting)")
+    if "Traceback" in output:
+        failures.append("Blender printed a Python traceback")
+    if not result.exists():
+        failures.append("the GUI script wrote no verdict (it did not run to the end)")
+    else:
+        verdict = json.loads(result.read_text())
+        for check in verdict["checks"]:
+            print(("ok   " if check["ok"] else "FAIL ") + check["name"] + (f": {check['detail']}" if check["detail"] else ""))
+            if not check["ok"]:
+                failures.append(check["name"])
+        for line in verdict.get("notes", []):
+            print("note " + line)
+    if failures:
+        print(output[-6000:])
+        print("FAILED: " + "; ".join(failures) + f" (logs in {work})")
+        return 1
+    print(f"passed ({work})")
+    if not args.keep:
+        shutil.rmtree(work, ignore_errors=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
