@@ -150,6 +150,7 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
         start = clock()
         display = Backoff(DISPLAY_FIRST_S, 2.0, DISPLAY_CAP_BACKGROUND_S if background else DISPLAY_CAP_S, start)
         status = Backoff(STATUS_INTERVAL_S, 1.0, STATUS_INTERVAL_S, start)
+        shown = False
         while not session.wait(POLL_S):
             if engine.test_break():
                 session.cancel()
@@ -161,8 +162,11 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
                 engine.update_stats("", status_line(integrator, progress))
                 _forward_log(engine, session, record)
                 _memory_stats(engine, session)
-            if display.due(now) and _copy_pass(session, passes, "Combined", width, height):
+            # The first pass is shown as soon as it is done (first pixels after F12), then at growing intervals.
+            first = not background and not shown and int(progress.get("samples_done", 0)) >= 1
+            if (first or display.due(now)) and _copy_pass(session, passes, "Combined", width, height):
                 engine.update_result(result)
+                shown = True
         session.join()
         joined = True
         # Final (or, after a cancel, partial) image and the other passes: end_result hands them to Blender.

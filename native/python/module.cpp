@@ -168,12 +168,12 @@ Affine affine_from(const py::handle& matrix) {
     return Affine::from_rows(a.data());
 }
 
-void viewport_update_scene(ViewportSession& s, const py::dict& arrays_dict, const py::dict& params_dict) {
+uint64_t viewport_update_scene(ViewportSession& s, const py::dict& arrays_dict, const py::dict& params_dict) {
     std::vector<std::string> unknown;
     SceneArrays arrays = arrays_from_dict(arrays_dict, &unknown);
     Params params = params_from_dict(params_dict);
     py::gil_scoped_release release;  // validation of millions of triangles needs no Python
-    s.update_scene(std::move(arrays), std::move(params));
+    return s.update_scene(std::move(arrays), std::move(params));
 }
 
 py::object viewport_image(const ViewportSession& s, uint64_t since) {
@@ -188,6 +188,7 @@ py::object viewport_image(const ViewportSession& s, uint64_t since) {
     std::copy(image.rgba.begin(), image.rgba.end(), pixels.mutable_data());
     py::dict d;
     d["version"] = image.version;
+    d["request"] = image.request;
     d["frame_width"] = image.frame_width;
     d["frame_height"] = image.frame_height;
     d["x0"] = image.x0;
@@ -313,16 +314,17 @@ PYBIND11_MODULE(_native, m) {
         .def(py::init<int>(), py::arg("threads") = 0)
         .def("update_scene", &viewport_update_scene, py::arg("arrays"), py::arg("params"))
         .def("update_settings",
-             [](ViewportSession& s, const py::dict& params) { s.update_settings(params_from_dict(params)); },
+             [](ViewportSession& s, const py::dict& params) { return s.update_settings(params_from_dict(params)); },
              py::arg("params"))
         .def("set_view",
              [](ViewportSession& s, const py::dict& view, const py::handle& camera_to_world) {
-                 s.set_view(params_from_dict(view), affine_from(camera_to_world));
+                 return s.set_view(params_from_dict(view), affine_from(camera_to_world));
              },
              py::arg("view"), py::arg("camera_to_world"))
         .def("pause", &ViewportSession::pause)
         .def("stop", &ViewportSession::stop, py::call_guard<py::gil_scoped_release>())
         .def("image_version", &ViewportSession::image_version)
+        .def("image_request", &ViewportSession::image_request)
         .def("image", &viewport_image, py::arg("since") = 0)
         .def("status", &viewport_status)
         .def("take_log", &ViewportSession::take_log);

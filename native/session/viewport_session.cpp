@@ -76,11 +76,11 @@ void ViewportSession::stop() {
     m_status.phase = "stopped";
 }
 
-void ViewportSession::update_scene(SceneArrays arrays, Params settings) {
+uint64_t ViewportSession::update_scene(SceneArrays arrays, Params settings) {
     arrays.validate();
     auto owned = std::make_unique<SceneArrays>(std::move(arrays));
     std::lock_guard<std::mutex> lock(m_mutex);
-    if (m_quit) return;
+    if (m_quit) return 0;
     m_pending_arrays = std::move(owned);
     m_settings = std::move(settings);
     m_dirty = true;
@@ -92,11 +92,12 @@ void ViewportSession::update_scene(SceneArrays arrays, Params settings) {
     m_status.error.reset();
     m_build_error.reset();
     m_cv.notify_all();
+    return m_restarts;
 }
 
-void ViewportSession::update_settings(Params settings) {
+uint64_t ViewportSession::update_settings(Params settings) {
     std::lock_guard<std::mutex> lock(m_mutex);
-    if (m_quit) return;
+    if (m_quit) return 0;
     m_settings = std::move(settings);
     m_dirty = true;
     m_paused = false;
@@ -105,16 +106,17 @@ void ViewportSession::update_settings(Params settings) {
     m_status.phase = "pending";
     m_status.error.reset();
     m_cv.notify_all();
+    return m_restarts;
 }
 
-void ViewportSession::set_view(Params view, const Affine& camera_to_world) {
+uint64_t ViewportSession::set_view(Params view, const Affine& camera_to_world) {
     Params probe = view;
     Camera check(probe, camera_to_world);  // throws for a bad view, here and not on the worker
     const int pixel_size = view.get<int>("pixel_size", 1), start = view.get<int>("start_resolution", 64);
     if (pixel_size < 1 || pixel_size > 64) throw InvalidParameter("viewport pixel_size must be between 1 and 64");
     if (start < 1) throw InvalidParameter("viewport start_resolution must be at least 1");
     std::lock_guard<std::mutex> lock(m_mutex);
-    if (m_quit) return;
+    if (m_quit) return 0;
     m_view = std::move(view);
     m_view_xf = camera_to_world;
     m_dirty = true;
@@ -124,6 +126,7 @@ void ViewportSession::set_view(Params view, const Affine& camera_to_world) {
     if (m_status.phase != "building") m_status.phase = "pending";
     m_status.error.reset();
     m_cv.notify_all();
+    return m_restarts;
 }
 
 void ViewportSession::pause() {
@@ -259,7 +262,7 @@ void ViewportSession::render_view(const Params& settings, const Params& view, co
         {
             std::lock_guard<std::mutex> lock(m_mutex);
             if (cancel->cancelled()) return;
-            m_rendering = Level{film, counters, fw, fh, x0, y0, d, ++m_level_ids, false};
+            m_rendering = Level{film, counters, fw, fh, x0, y0, d, ++m_level_ids, false, restart};
             m_status.phase = "rendering";
             m_status.pixel_size = d;
             m_status.samples_total = last ? integrator->samples_per_pixel() : 1;
@@ -287,6 +290,12 @@ uint64_t ViewportSession::image_version() const {
     return (level.id << 40) | std::min<uint64_t>(level.counters->paths.load(), (uint64_t(1) << 40) - 1);
 }
 
+uint64_t ViewportSession::image_request() const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    const Level& level = m_rendering.film && m_rendering.counters->samples_done >= 1 ? m_rendering : m_shown;
+    return level.film ? level.request : 0;
+}
+
 bool ViewportSession::image(uint64_t since, ViewportImage* out) const {
     Level level;
     uint64_t version;
@@ -299,6 +308,7 @@ bool ViewportSession::image(uint64_t since, ViewportImage* out) const {
     if (version <= since) return false;
     // The film is shared: the worker may go on adding tiles while it is copied (tile by tile, under their locks).
     out->version = version;
+    out->request = level.request;
     out->frame_width = level.frame_width;
     out->frame_height = level.frame_height;
     out->x0 = level.x0;

@@ -41,6 +41,7 @@ class Scene;
 
 struct ViewportImage {
     uint64_t version = 0;      // grows with every change of what image() returns
+    uint64_t request = 0;      // the request (update_scene/update_settings/set_view) whose render it is
     int frame_width = 0, frame_height = 0;  // the view's frame in this level's pixels
     int x0 = 0, y0 = 0;        // the film's origin in that frame (a render border)
     int width = 0, height = 0; // the film
@@ -70,13 +71,14 @@ public:
 
     /// New scene content and render settings (the params of a render; width/height and the camera come from
     /// set_view). Validates on the calling thread (throws InvalidScene / InvalidParameter), builds on the worker.
-    void update_scene(SceneArrays arrays, Params settings);
+    /// Each request returns its number (ViewportImage::request tells which request an image belongs to).
+    uint64_t update_scene(SceneArrays arrays, Params settings);
     /// New render settings only (integrator, samples, ...): restarts without rebuilding.
-    void update_settings(Params settings);
+    uint64_t update_settings(Params settings);
     /// The view: camera params as Camera reads them, `width`/`height` the view's size in pixels, an optional
     /// border (crop_x0..crop_y1, view pixels), `pixel_size` and `start_resolution`; camera_to_world is rigid.
     /// Validated here (throws InvalidParameter).
-    void set_view(Params view, const Affine& camera_to_world);
+    uint64_t set_view(Params view, const Affine& camera_to_world);
     /// Stops rendering (nothing is lost: the next request restarts).
     void pause();
     /// Cancels whatever runs, joins the worker and frees the scene; later requests are ignored. The destructor
@@ -85,6 +87,9 @@ public:
 
     /// Version of the newest image (0: none yet); cheap, for polling.
     uint64_t image_version() const;
+    /// The request the newest image belongs to (0: none yet): after a view change the caller can wait a moment
+    /// for the first image of the new view (the coarsest level takes milliseconds) and draw that at once.
+    uint64_t image_request() const;
     /// The newest image, if its version is above `since`.
     bool image(uint64_t since, ViewportImage* out) const;
     ViewportStatus status() const;
@@ -119,6 +124,7 @@ private:
         int frame_width = 0, frame_height = 0, x0 = 0, y0 = 0, pixel_size = 1;
         uint64_t id = 0;
         bool finished = false;
+        uint64_t request = 0;
     };
     Level m_shown, m_rendering;
     uint64_t m_level_ids = 0;

@@ -29,6 +29,7 @@ VIEWPORT_INTEGRATORS = ("PATH",)
 UNLIMITED_SAMPLES = 1 << 24
 TICK_S = 0.05
 REDRAW_FAST_S, REDRAW_SLOW_S, FAST_PERIOD_S = 0.0, 0.25, 2.0   # redraw throttle: fast just after a restart
+FIRST_IMAGE_WAIT_S = 0.05   # the longest a redraw after a view change waits for the new view's first image
 
 # Stand-in for the scene camera's data when the scene has none (the view supplies the camera anyway).
 _NO_CAMERA = types.SimpleNamespace(
@@ -118,9 +119,10 @@ class ViewportRender:
             view.params["start_resolution"] = int(scene.candela.viewport_start_resolution)
             key = view.key()
             if key != self.view_key:
-                self.session.set_view(view.params, view.matrix)
+                request = self.session.set_view(view.params, view.matrix)
                 self.view_key, self.view_notes = key, view.notes
                 self._restarted()
+                self._wait_for_first_image(request)
         except (ExportError, ValueError) as e:
             self.view_key = None
             self._set_header(f"Candela: {e}")
@@ -169,6 +171,14 @@ class ViewportRender:
         for message in warnings.messages:
             self._warn(message)
         self._restarted()
+
+    def _wait_for_first_image(self, request):
+        """After a view change, wait a moment for the new view's coarsest image, so this redraw shows it instead
+        of the old view (which would need another redraw: a few hundred milliseconds with software OpenGL). The
+        coarsest level has about start_resolution² pixels and one sample: milliseconds; the wait is capped."""
+        end = time.monotonic() + FIRST_IMAGE_WAIT_S
+        while self.session.image_request() < request and time.monotonic() < end:
+            time.sleep(0.001)
 
     def _warn(self, message):
         if message not in self.warnings:
