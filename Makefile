@@ -11,7 +11,7 @@ DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev
 # libxxhash-dev: keys of the viewport's mesh BVH cache. xvfb, xauth and Mesa's software OpenGL (llvmpipe, in
 # libgl1-mesa-dri): the GUI tests run Blender's window under Xvfb.
 
-.PHONY: all deps build demo test bench microbench accuracy parity sampling-docs fuzz test-sanitize robustness-report install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench accuracy parity sampling-docs fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
 
 all: build
 
@@ -76,6 +76,16 @@ test-sanitize: build
 # docs/robustness.md from a fresh run of the robustness cases.
 robustness-report: build
 	$(CLEAN_ENV) $(PYTHON) tests/robustness/report.py --build $(BUILD)
+
+# View change -> first image and F12 -> first pixels in Blender's window (Xvfb), Candela beside Cycles, on the example
+# scenes and a 1-million-triangle scene, with Blender's redraw floor beside them (about 30 minutes; `make test`
+# runs a quick mode).
+viewport-latency: build
+	$(CLEAN_ENV) $(PYTHON) bench/viewport_latency.py --build $(BUILD)
+
+# The GUI tests alone (Rendered viewport, Material Preview, robustness, stress; Xvfb).
+test-gui: build
+	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -L gui
 
 microbench: build
 	$(BUILD)/bin/candela_microbench
