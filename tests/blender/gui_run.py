@@ -15,10 +15,12 @@ Xvfb refusing to start), with a message saying so.
 import argparse
 import json
 import os
+import random
 import shutil
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -29,6 +31,16 @@ SKIP = 77
 def skip(message):
     print(f"SKIPPED: {message}")
     sys.exit(SKIP)
+
+
+def xvfb_command(fbdir):
+    """xvfb-run on a free display from a random start (fewer collisions with other tests), the screen's
+    framebuffer in a file under `fbdir` (gui_steps.framebuffer)."""
+    return ["xvfb-run", "-a", "-n", str(random.randint(100, 9000)), "-s", f"-screen 0 1600x1000x24 -fbdir {fbdir}"]
+
+
+def display_failed(output):
+    return "Xvfb failed to start" in output or "cannot open display" in output.lower()
 
 
 def main():
@@ -55,18 +67,21 @@ def main():
     result = work / "result.json"
     if result.exists():
         result.unlink()
-    cmd = ["xvfb-run", "-a", "-s", f"-screen 0 1600x1000x24 -fbdir {work / 'fb'}"] + blender + \
-          [str(blend), "--python", str(HERE / args.script)]
-    try:
-        proc = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=args.timeout)
-    except subprocess.TimeoutExpired as e:
-        out = (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
-        print(out[-6000:])
-        print(f"FAILED: Blender did not finish within {args.timeout:.0f} s (a hang)")
-        return 1
-    output = proc.stdout + proc.stderr
+    for attempt in range(3):   # xvfb-run -a can race another test for a display number: retry elsewhere
+        cmd = xvfb_command(work / "fb") + blender + [str(blend), "--python", str(HERE / args.script)]
+        try:
+            proc = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=args.timeout)
+        except subprocess.TimeoutExpired as e:
+            out = (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
+            print(out[-6000:])
+            print(f"FAILED: Blender did not finish within {args.timeout:.0f} s (a hang)")
+            return 1
+        output = proc.stdout + proc.stderr
+        if not display_failed(output):
+            break
+        time.sleep(2.0 + 3.0 * random.random())
     (work / "blender.log").write_text(output)
-    if "Xvfb failed to start" in output or "cannot open display" in output.lower():
+    if display_failed(output):
         skip(f"no X display can be started here (xvfb-run: {output.strip().splitlines()[-1] if output else ''})")
     failures = []
     if proc.returncode != 0:

@@ -26,12 +26,13 @@ def patch(pixels, xy, r=3):
     return pixels[max(0, y - r):y + r + 1, max(0, x - r):x + r + 1].reshape(-1, 3).mean(axis=0)
 
 
-def final_image(vp, min_samples, since=None):
-    """The drawn image's metadata once it is the finest level with min_samples (and newer than `since`)."""
+def final_image(vp, min_samples, after=None):
+    """The drawn image's metadata once it is the finest level with min_samples (and, with `after`, rendered for
+    a request after that one: an edit's or view change's own image, not more samples of the old one)."""
     m = vp.display.meta
     if not m or m["pixel_size"] > vp.pixel_size or m["samples"] < min_samples:
         return None
-    if since is not None and m["version"] == since:
+    if after is not None and m["request"] <= after:
         return None
     return m
 
@@ -82,33 +83,35 @@ def steps():
 
     # ---- the view's own camera: the marker where Blender draws it ----
     for mode in ('PERSP', 'ORTHO', 'CAMERA'):
-        version = vp.display.version
+        request = vp.session.image_request()
         if mode == 'CAMERA':
             rv3d.view_camera_zoom, rv3d.view_camera_offset = 12.0, (0.04, -0.03)
-        since = version if rv3d.view_perspective != mode else None   # switching changes the image
+        after = request if rv3d.view_perspective != mode else None   # switching restarts the render
         rv3d.view_perspective = mode
-        ok = yield from G.wait_until(lambda: final_image(vp, 2, since=since) is not None, 60)
+        ok = yield from G.wait_until(lambda: final_image(vp, 2, after=after) is not None, 60)
         yield 0.3   # the view's matrices are those of the last redraw
         got, scale = marker_centroid(vp, region)
         want = G.project(region, rv3d, bpy.data.objects["Marker"].location)
         error = math.dist(got, want) if want else float("inf")
         G.check(f"{mode.lower()} view: the marker is where Blender draws it", ok and error < 1.5 * scale + 1.0,
                 f"rendered at ({got[0]:.1f}, {got[1]:.1f}), Blender at {want}, {error:.2f} px")
+    request = vp.session.image_request()
     rv3d.view_perspective = 'PERSP'
-    yield from G.wait_until(lambda: final_image(vp, 4) is not None, 60)
+    yield from G.wait_until(lambda: final_image(vp, 4, after=request) is not None, 60)
+    yield 0.5   # and Blender's own redraw of the new view
     before = G.screenshot("before_move")
 
     # ---- a transform-only edit ----
     reads, built = vp.meshes.reads, vp.session.status()["bvh_built"]
     old_xy = G.project(region, rv3d, cube.location)
-    version = vp.display.version
+    request = vp.session.image_request()
     cube.location.x -= 3.0
-    ok = yield from G.wait_until(lambda: final_image(vp, 4, since=version) is not None, 60)
+    ok = yield from G.wait_until(lambda: final_image(vp, 4, after=request) is not None, 60)
     moved = G.screenshot("moved")
     new_xy = G.project(region, rv3d, cube.location)
     G.check("a transform change updates the image",
             ok and is_red(patch(moved, new_xy)) and not is_red(patch(moved, old_xy)) and is_red(patch(before, old_xy)),
-            f"old place {patch(moved, old_xy)}, new place {patch(moved, new_xy)}")
+            f"old place {old_xy}: {patch(moved, old_xy)}, new place {new_xy}: {patch(moved, new_xy)}")
     status = vp.session.status()
     G.check("the transform edit read no mesh and built no mesh BVH",
             vp.meshes.reads == reads and status["bvh_built"] == built,
@@ -128,9 +131,9 @@ def steps():
     G.check("fixing it renders again", ok, vp.header)
 
     # ---- deleting an object, undo, switching the engine, closing the view ----
-    version = vp.display.version
+    request = vp.session.image_request()
     bpy.data.objects.remove(bpy.data.objects["Marker"])
-    ok = yield from G.wait_until(lambda: final_image(vp, 1, since=version) is not None, 60)
+    ok = yield from G.wait_until(lambda: final_image(vp, 1, after=request) is not None, 60)
     G.check("deleting an object while rendering: it renders on", ok and vp.session.status()["error"] is None,
             vp.header)
     bpy.ops.ed.undo_push(message="before lift")

@@ -84,6 +84,36 @@ def test_transform_only_edit_reads_no_mesh_and_builds_no_bvh():
         session.stop()
 
 
+def test_images_are_read_once_across_exports(tmp_path):
+    import texture_scenes as ts
+    scene = ts.textured_plane_scene(str(tmp_path))
+    reads = []   # images read from Blender (each read is stored in the cache)
+
+    class Counting(scene_sync.ImageCache):
+        def __setitem__(self, key, value):
+            reads.append(key[0])
+            super().__setitem__(key, value)
+
+    images = Counting()
+
+    def export():
+        arrays = export_scene(bpy.context.evaluated_depsgraph_get(), scene.camera, image_cache=images)
+        images.end_export()
+        return arrays
+
+    first = export()
+    assert len(reads) == 1
+    bpy.data.objects["Plane"].location.x += 0.1   # a transform edit: the texels come from the cache
+    second = export()
+    assert len(reads) == 1 and np.array_equal(first["textures_u8"], second["textures_u8"])
+    image = bpy.data.images[reads[0]]
+    changes = scene_sync.classify([update(image)])
+    assert changes.export and changes.images == {image.name}
+    images.invalidate(changes.images)              # an edited image is read again
+    export()
+    assert len(reads) == 2
+
+
 SPACE = SimpleNamespace(camera=None, use_local_camera=False, use_render_border=False, lens=50.0, clip_start=0.01,
                         clip_end=1000.0, render_border_min_x=0.0, render_border_min_y=0.0, render_border_max_x=1.0,
                         render_border_max_y=1.0)

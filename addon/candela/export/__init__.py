@@ -88,13 +88,14 @@ def name_objects(message, names):
 
 
 def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None, names=None, mesh_reader=None,
-                 camera_matrix=None):
+                 camera_matrix=None, image_cache=None):
     """Export the evaluated scene seen through `camera` (an original camera object, see render_camera), or from
     `camera_matrix` (a 4x4 camera → world matrix: the 3D view's) when `camera` is None. `mesh_reader`: how
-    meshes are read (default export/mesh.py read_mesh; the viewport passes its cache's)."""
+    meshes are read (default export/mesh.py read_mesh; the viewport passes its cache's); `image_cache` a dict
+    keeping loaded image texels across exports (the viewport's)."""
     warnings = warnings if warnings is not None else Warnings()
     scene = depsgraph.scene
-    tables = ShaderTables(warnings)
+    tables = ShaderTables(warnings, image_cache)
     materials = MaterialTable(warnings, tables)
     geometry = GeometryTable(materials, read=mesh_reader or read_mesh)
     lights = LightTable(warnings)

@@ -8,6 +8,7 @@ __del__, unregistering the add-on (Blender does it when quitting) and the timer 
 the viewport, switching the engine, loading a file) all call it, so no thread outlives its viewport.
 """
 
+import atexit
 import time
 import traceback
 import types
@@ -20,7 +21,7 @@ from ..export import ExportError, Warnings, export_scene
 from ..params import to_native_params
 from ..unsupported import ignored_settings
 from .display import Display
-from .scene_sync import MeshCache, classify, instance_signature
+from .scene_sync import ImageCache, MeshCache, classify, instance_signature
 from .view_camera import view_camera
 
 # Integrators the viewport can restart at any moment and refine progressively; others fall back to PATH there
@@ -66,6 +67,7 @@ class ViewportRender:
         self.engine = engine
         self.session = native.require().ViewportSession(0)
         self.meshes = MeshCache()
+        self.images = ImageCache()
         self.display = Display()
         self.settings = None
         self.settings_notes = []
@@ -97,6 +99,7 @@ class ViewportRender:
         signature = instance_signature(depsgraph) if (first or changes.scene or changes.export) else self.signature
         if first or changes.export or signature != self.signature or self.error is not None:
             self.meshes.invalidate(changes.geometry)
+            self.images.invalidate(changes.images)
             self.signature = signature
             self._export(depsgraph, context, settings)
         elif settings != self.settings:
@@ -159,7 +162,8 @@ class ViewportRender:
         try:
             camera = None if matrix is not None else depsgraph.scene.camera
             arrays = export_scene(depsgraph, camera, warnings=warnings, mesh_reader=self.meshes.read,
-                                  camera_matrix=matrix)
+                                  camera_matrix=matrix, image_cache=self.images)
+            self.images.end_export()
             for message in ignored_settings(depsgraph):
                 warnings.add(message)
             self.meshes.end_export()
@@ -236,6 +240,7 @@ class ViewportRender:
         finally:
             self.display.free()
             self.meshes.clear()
+            self.images.clear()
             _live.discard(self)
             self.engine = None
 
@@ -254,6 +259,19 @@ def _tick():
 def _ensure_timer():
     if not bpy.app.timers.is_registered(_tick):
         bpy.app.timers.register(_tick, first_interval=TICK_S, persistent=True)
+
+
+def _stop_threads_at_exit():
+    """Last resort when Python shuts down: stop the native workers only (no GPU call: the context may be gone).
+    Normally Blender has unregistered the add-on (close_all) before."""
+    for vp in list(_live):
+        try:
+            vp.session.stop()
+        except Exception:
+            pass
+
+
+atexit.register(_stop_threads_at_exit)
 
 
 def close_all():

@@ -3,8 +3,9 @@
 - an object whose geometry changed (edit mode, modifiers, its mesh): its mesh is read again;
 - any other change to objects (transform, visibility of its shading), materials, lights, the world, images, node
   trees or collections: the scene is exported again, but every mesh that did not change comes from the
-  MeshCache (no Blender mesh reads) and keeps its BVH on the native side (scene/mesh_bvh_cache.h), so a
-  transform-only edit rebuilds nothing but the top-level BVH;
+  MeshCache (no Blender mesh reads) and keeps its BVH on the native side (scene/mesh_bvh_cache.h), and every
+  image that did not change comes from the ImageCache (no pixel reads), so a transform-only edit rebuilds
+  nothing but the top-level BVH;
 - the Scene alone (render settings, colour management, frame, selection): no export; the render settings are
   compared with the last ones and only a real change restarts the render (update_settings). Colour management is
   applied when drawing and never restarts. A Scene update that changes which objects are visible (hiding an
@@ -23,11 +24,13 @@ GEOMETRY_TYPES = (bpy.types.Mesh, bpy.types.Curve, bpy.types.MetaBall)
 
 
 class Changes:
-    """The outcome of classify(): export (bool), the names whose meshes must be read again, scene (bool)."""
+    """The outcome of classify(): export (bool), the names whose meshes must be read again, the images whose
+    pixels must be read again, scene (bool)."""
 
     def __init__(self):
         self.export = False
         self.geometry = set()   # object and datablock names
+        self.images = set()     # image names
         self.scene = False
 
     def __repr__(self):
@@ -51,6 +54,8 @@ def classify(updates):
             changes.export = True
         elif isinstance(block, EXPORT_TYPES):
             changes.export = True
+            if isinstance(block, bpy.types.Image):
+                changes.images.add(block.name)
         elif isinstance(block, bpy.types.Scene):
             changes.scene = True
     return changes
@@ -115,4 +120,30 @@ class MeshCache:
 
     def clear(self):
         self._entries.clear()
+        self._used.clear()
+
+
+class ImageCache(dict):
+    """Loaded image texels kept between viewport exports (export/shader_tables.py reads an image only when its
+    key is missing); images updated in Blender are dropped by invalidate(), unused ones after each export."""
+
+    def __init__(self):
+        super().__init__()
+        self._used = set()
+
+    def get(self, key, default=None):
+        self._used.add(key)
+        return super().get(key, default)
+
+    def __setitem__(self, key, value):
+        self._used.add(key)
+        super().__setitem__(key, value)
+
+    def invalidate(self, names):
+        for key in [k for k in self if k[0] in names]:
+            del self[key]
+
+    def end_export(self):
+        for key in [k for k in self if k not in self._used]:
+            del self[key]
         self._used.clear()
