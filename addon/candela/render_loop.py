@@ -113,8 +113,9 @@ def _forward_log(engine, session, record):
 
 
 def with_latest_warning(line, record):
-    """The status line with the latest warning after it: Blender keeps the last stats line in the image
-    editor's header and the status bar after the render, where the Info editor is usually not open."""
+    """The status line with the latest warning after it, in every status update: the image editor's header and
+    the terminal show it while the render runs, where the Info editor is usually not open. (When the render ends,
+    Blender replaces the line with its own frame/time/memory summary.)"""
     if not record.warnings:
         return line
     latest = record.warnings[-1]
@@ -159,7 +160,7 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
             progress = session.progress()
             engine.update_progress(float(progress.get("fraction", 0.0)))
             if status.due(now):
-                engine.update_stats("", status_line(integrator, progress))
+                engine.update_stats("", with_latest_warning(status_line(integrator, progress), record))
                 _forward_log(engine, session, record)
                 _memory_stats(engine, session)
             # The first pass is shown as soon as it is done (first pixels after F12), then at growing intervals.
