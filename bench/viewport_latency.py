@@ -86,7 +86,7 @@ def main():
         return 77
     scenes = args.scenes.split(",") if args.scenes else (["cornell_box"] if args.quick else SCENES)
     view_trials, f12_trials = (1, 1) if args.quick else (args.view_trials, args.f12_trials)
-    out = Path(args.out or Path(args.build) / "viewport-latency")
+    out = Path(args.out or Path(args.build) / "viewport-latency").resolve()
     out.mkdir(parents=True, exist_ok=True)
     rows = []
     for scene in scenes:

@@ -268,7 +268,9 @@ void ViewportSession::render_view(const Params& settings, const Params& view, co
             m_status.samples_total = last ? integrator->samples_per_pixel() : 1;
             m_status.film_bytes = size_t(double(film->width()) * film->height() * film_bytes_per_pixel());
         }
-        RenderContext ctx{*cancel, *counters, m_threads, nullptr};
+        // The render settings' thread count (Blender's Performance > Threads), else the session's.
+        RenderContext ctx{*cancel, *counters, p.has("threads") ? resolve_thread_count(p.get<int>("threads", 0)) : m_threads,
+                          nullptr};
         integrator->render(*m_scene, *film, ctx);
         std::lock_guard<std::mutex> lock(m_mutex);
         if (cancel->cancelled() || restart != m_restarts) return;

@@ -63,7 +63,8 @@ struct ViewportStatus {
 
 class ViewportSession {
 public:
-    /// `threads` as the `threads` param (0 = every hardware thread).
+    /// `threads` as the `threads` param (0 = every hardware thread): Embree's builds, and renders whose settings
+    /// have no `threads`.
     explicit ViewportSession(int threads);
     ~ViewportSession();
     ViewportSession(const ViewportSession&) = delete;

@@ -41,6 +41,19 @@ def test_classify_updates():
     assert scene_sync.classify([update(bpy.data.materials["Grey"], shading=True)]).export
 
 
+def test_integrators_without_progressive_rendering_fall_back_to_path(monkeypatch):
+    from candela.viewport import render
+    scene = scenes.tiny_scene()
+    settings, notes = viewport_settings(scene, bpy.context.view_layer)
+    assert settings["integrator"] == "PATH" and notes == []
+    assert settings["time_limit"] == 0.0 and settings["noise_threshold"] == 0.0 and "passes" not in settings
+    scene.candela.viewport_samples = 0
+    assert viewport_settings(scene, bpy.context.view_layer)[0]["samples"] == render.UNLIMITED_SAMPLES
+    monkeypatch.setattr(render, "VIEWPORT_INTEGRATORS", ("SOMETHING_PROGRESSIVE",))   # PATH as if it were not
+    settings, notes = viewport_settings(scene, bpy.context.view_layer)
+    assert settings["integrator"] == "PATH" and "does not render progressively" in notes[0]
+
+
 def wait_done(session, timeout=60.0):
     end = time.monotonic() + timeout
     while time.monotonic() < end:
