@@ -9,8 +9,8 @@ engine, no engine instrumentation), polled on every pass of Blender's event loop
   direction.
 - F12 → first pixels: the render in a full-screen image editor; the time from invoking the render until the
   screen first shows pixels of it (first_new from the blank result to the finished render).
-- the redraw floor: the same view change in Solid shading, the time Blender itself needs to show a new frame
-  here (what no render engine can beat).
+- the same view change in Solid shading ("redraw_floor"): the time Blender itself needs to show a new frame of
+  the scene here, with no render engine involved.
 
 Writes {"view_change": [s, ...], "f12": [...], "redraw_floor": [...], "engine_first_image": [...]} to
 $CANDELA_GUI_DIR/latency.json (engine_first_image: Candela's worker, from taking the view change to its first

@@ -50,7 +50,7 @@ class CandelaRenderEngine(bpy.types.RenderEngine):
 
     def view_update(self, context, depsgraph):
         try:
-            if self._viewport is None:
+            if self._viewport is None or self._viewport.closed:
                 self._viewport = viewport.ViewportRender(self)
             self._viewport.update(context, depsgraph)
         except Exception as e:
@@ -58,7 +58,7 @@ class CandelaRenderEngine(bpy.types.RenderEngine):
 
     def view_draw(self, context, depsgraph):
         try:
-            if self._viewport is None:   # Blender draws before the first update after some changes
+            if self._viewport is None or self._viewport.closed:   # no update yet, or closed after an error
                 self._viewport = viewport.ViewportRender(self)
                 self._viewport.update(context, depsgraph)
             self._viewport.draw(context, depsgraph)
