@@ -211,7 +211,7 @@ void ViewportSession::process(Request& r) {
     }
     if (!m_scene || !r.settings || !r.view) {
         std::lock_guard<std::mutex> lock(m_mutex);
-        m_status.phase = "idle";
+        m_status.phase = m_build_error ? "failed" : "idle";   // a scene that cannot be built stays failed
         return;
     }
     render_view(*r.settings, *r.view, r.view_xf, r.restart);

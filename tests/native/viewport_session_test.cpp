@@ -192,6 +192,7 @@ TEST(ViewportSession, ErrorsAreReportedAndClearedByTheNextScene) {
     MeshBuilder degenerate = b;
     for (int k = 0; k < 12; ++k) degenerate.instance_transform[16 + k] = 0.f;   // instance 1: zero scale
     vs.update_scene(degenerate.arrays(), settings);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));   // the build may fail before the view arrives
     vs.set_view(view_params(16, 12), Affine());
     ViewportStatus st = wait_done(vs);
     ASSERT_TRUE(st.error);
