@@ -50,9 +50,11 @@ accuracy: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD)
 
 # Parity with Cycles 3.4 on scripted scenes at full size: build/parity/ and docs/parity.md (about 30 minutes;
+# then the per-node suite, docs/parity_nodes.md, about 5 minutes;
 # `make test` runs a quick mode).
 parity: build
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --build $(BUILD) --docs docs
+	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --nodes --size 96 --build $(BUILD) --docs docs
 
 # docs/sampling.md and docs/sampling/*.png: one picture, error and time per sampling technique (~15 minutes;
 # the scenes' references are cached in build/sampling/cache).

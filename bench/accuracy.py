@@ -89,7 +89,7 @@ def configurations(native):
     """(label, engine, candela settings) for every configuration the build offers."""
     caps = native.capabilities()
     out = [("Cycles", "CYCLES", [])]
-    for name, _ in caps["integrators"]:
+    for name, *_ in caps["integrators"]:
         samplers = caps.get("samplers", ["RANDOM"]) if name == "PATH" else [None]
         for sampler in samplers:
             settings = [f"integrator={name}"] + ([f"sampler={sampler}"] if sampler and len(samplers) > 1 else [])

@@ -6,9 +6,32 @@ camera's data, and command-line overrides. Nothing else builds params.
 
 import numpy as np
 
-from . import cmdline
+from . import cmdline, schema
 from .export.common import ExportError
 from .passes import native_pass_list
+
+# The settings every integrator reads, sent always (the native side publishes them as common_params; a test checks
+# that this list is that one).
+COMMON_KEYS = ("samples", "seed", "sampler", "pixel_filter", "filter_width", "time_limit", "noise_threshold")
+
+
+def setting_value(spec, value):
+    """A property's value as the native side takes it, by the published type."""
+    kind = spec["type"]
+    if kind == "BOOL":
+        return bool(value)
+    if kind == "INT":
+        return int(value)
+    if kind == "FLOAT":
+        return float(value)
+    return str(value)
+
+
+def integrator_params(settings, integrator=None):
+    """The chosen integrator's own settings (and only its: another integrator's keys would be unknown to it), or
+    those of `integrator` (the viewport's fallback to PATH)."""
+    specs = schema.integrator_params().get(integrator or settings.integrator, [])
+    return {spec["key"]: setting_value(spec, getattr(settings, spec["key"])) for spec in specs}
 
 
 def frame_size(render):
@@ -30,7 +53,7 @@ def crop_window(render):
 
 
 def result_size(render):
-    """Size of the RenderResult Blender expects from the engine: the border window (blender-conventions §1.7)."""
+    """Size of the RenderResult Blender expects from the engine: the border window (docs/conventions.md §1)."""
     x0, y0, x1, y1 = crop_window(render)
     return x1 - x0, y1 - y0
 
@@ -123,20 +146,8 @@ def to_native_params(scene, camera_data, argv=None, camera_object=None, view_lay
         "samples": settings.samples,
         "time_limit": float(settings.time_limit),
         "noise_threshold": float(settings.noise_threshold),
-        "max_bounces": settings.max_bounces,
-        "rr_start_bounce": settings.rr_start_bounce,
         "seed": settings.seed,
         "sampler": settings.sampler,
-        "hemisphere_sampling": settings.hemisphere_sampling,
-        "light_sampling": settings.light_sampling,
-        "mis_heuristic": settings.mis_heuristic,
-        "light_pdf": settings.light_pdf,
-        "light_selection": settings.light_selection,
-        "ward_threshold": float(settings.ward_threshold),
-        "light_samples": settings.light_samples,
-        "branching_factor": settings.branching_factor,
-        "rr_mode": settings.rr_mode,
-        "clamp_indirect": float(settings.clamp_indirect),
         "pixel_filter": settings.pixel_filter,
         "filter_width": float(settings.filter_width),
         # render.threads honours `-t N` and the Fixed/Auto-detect setting.
@@ -148,6 +159,7 @@ def to_native_params(scene, camera_data, argv=None, camera_object=None, view_lay
         # Combined alpha 0 where the background is seen directly (premultiplied RGBA), like Cycles.
         "film_transparent": bool(render.film_transparent),
     }
+    params.update(integrator_params(settings))
     params.update(camera_params(camera_data))
     params.update(dof_params(camera_data, camera_object))
     if view_layer is not None:

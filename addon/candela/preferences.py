@@ -19,7 +19,7 @@ class CandelaPreferences(bpy.types.AddonPreferences):
         if native.module is not None and registration_error is None:
             caps = native.capabilities()
             col.label(text=f"Native module loaded (ABI {native.ABI_VERSION})", icon='CHECKMARK')
-            col.label(text="Integrators: " + ", ".join(name for name, _ in schema.integrators()))
+            col.label(text="Integrators: " + ", ".join(entry[0] for entry in schema.integrators()))
             return
         col.label(text="Candela cannot render:", icon='ERROR')
         for line in _wrap(registration_error or native.error or "unknown error", 90):

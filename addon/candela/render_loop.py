@@ -50,16 +50,33 @@ def format_duration(seconds):
     return f"{h}:{m:02d}:{s:02d}" if h else f"{m:02d}:{s:02d}"
 
 
+def format_count(n):
+    """3200000 → "3.2 M", 41000 → "41 k", 512 → "512"."""
+    n = float(n)
+    for scale, suffix in ((1e9, " G"), (1e6, " M"), (1e3, " k")):
+        if abs(n) >= scale:
+            return f"{n / scale:.3g}{suffix}"
+    return f"{int(n)}"
+
+
 def status_line(integrator, progress):
-    """"Path | Sample 37/256 | Elapsed 00:12 | Remaining 00:41" (or the phase while building)."""
+    """"Path | Sample 37/256 | Elapsed 00:12 | Remaining 00:41", the phase while building, or the integrator's
+    current stage with its own progress ("Photon | Tracing photons 3.2 M / 10 M | Elapsed 00:04")."""
     name = integrator.replace("_", " ").title() if integrator != "BDPT" else "BDPT"
     elapsed = float(progress.get("elapsed_s", 0.0))
     phase = progress.get("phase", "rendering")
     if phase == "building":
         return f"{name} | Building scene | Elapsed {format_duration(elapsed)}"
+    stage = progress.get("stage") or ""
+    if stage and phase == "rendering":
+        stage_total = int(progress.get("stage_total", 0))
+        what = (f"{stage} {format_count(progress.get('stage_done', 0))} / {format_count(stage_total)}" if stage_total
+                else stage)
+        return f"{name} | {what} | Elapsed {format_duration(elapsed)}"
     done, total = int(progress.get("samples_done", 0)), int(progress.get("samples_total", 0))
+    unit = (progress.get("unit") or "sample").capitalize()
     fraction = float(progress.get("fraction", 0.0))
-    line = f"{name} | Sample {done}/{total} | Elapsed {format_duration(elapsed)}"
+    line = f"{name} | {unit} {done}/{total} | Elapsed {format_duration(elapsed)}"
     error = progress.get("relative_error")
     if error is not None:
         line += f" | Noise {100.0 * error:.1f} %"

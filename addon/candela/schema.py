@@ -25,8 +25,12 @@ INTEGRATORS = ("PATH",)
 # Shader programs (docs/architecture.md, "Shader programs"): every enumeration by its native name, in value order.
 SHADER_ENUMS = {
     "shader_ops": ("CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE",
-                   "AVERAGE", "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST"),
-    "coord_kinds": ("UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING"),
+                   "AVERAGE", "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE",
+                   "TEX_WHITE_NOISE", "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER",
+                   "TEX_GRADIENT", "TEX_BRICK", "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT",
+                   "FRESNEL", "BUMP", "ATTRIBUTE", "SKY", "CURVES", "BLACKBODY"),
+    "coord_kinds": ("UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING", "POSITION", "TRUE_NORMAL",
+                    "BACKFACING", "REFLECTION", "OBJECT_LOCATION", "OBJECT_INDEX", "TANGENT"),
     "math_ops": ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER", "LOGARITHM", "SQRT",
                  "INVERSE_SQRT", "ABSOLUTE", "EXPONENT", "MINIMUM", "MAXIMUM", "LESS_THAN", "GREATER_THAN", "SIGN",
                  "COMPARE", "SMOOTH_MIN", "SMOOTH_MAX", "ROUND", "FLOOR", "CEIL", "TRUNC", "FRACT", "MODULO", "WRAP",
@@ -42,6 +46,18 @@ SHADER_ENUMS = {
     "tex_color_spaces": ("LINEAR", "SRGB"),
     "tex_storages": ("FLOAT", "BYTE"),
     "input_targets": ("CLOSURE", "EMISSION", "NORMAL", "WORLD", "HOLDOUT"),
+    "musgrave_types": ("MULTIFRACTAL", "FBM", "HYBRID_MULTIFRACTAL", "RIDGED_MULTIFRACTAL", "HETERO_TERRAIN"),
+    "voronoi_features": ("F1", "F2", "SMOOTH_F1", "DISTANCE_TO_EDGE", "N_SPHERE_RADIUS"),
+    "voronoi_metrics": ("EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINKOWSKI"),
+    "wave_types": ("BANDS", "RINGS"),
+    "wave_profiles": ("SIN", "SAW", "TRI"),
+    "gradient_types": ("LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "SPHERICAL", "QUADRATIC_SPHERE", "RADIAL"),
+    "vector_math_ops": ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "CROSS_PRODUCT", "PROJECT", "REFLECT",
+                        "REFRACT", "FACEFORWARD", "DOT_PRODUCT", "DISTANCE", "LENGTH", "SCALE", "NORMALIZE", "ABSOLUTE",
+                        "MINIMUM", "MAXIMUM", "FLOOR", "CEIL", "FRACTION", "MODULO", "WRAP", "SNAP", "SINE", "COSINE",
+                        "TANGENT"),
+    "map_range_types": ("LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"),
+    "sky_models": ("PREETHAM", "NISHITA"),
 }
 RAMP_SIZE = 256   # entries per ColorRamp table
 
@@ -86,14 +102,27 @@ def shader_enum(key):
 
 
 def integrators():
-    """((name, description), ...): the native registry lists names or (name, description) pairs."""
+    """((name, description, label), ...) of the native registry (names only in the fallback)."""
     result = []
     for entry in _cap("integrators", INTEGRATORS):
         if isinstance(entry, str):
-            result.append((entry, ""))
-        else:
-            result.append((str(entry[0]), str(entry[1]) if len(entry) > 1 else ""))
+            entry = (entry,)
+        name = str(entry[0])
+        description = str(entry[1]) if len(entry) > 1 else ""
+        label = str(entry[2]) if len(entry) > 2 else name.replace("_", " ").title()
+        result.append((name, description, label))
     return tuple(result)
+
+
+def integrator_params():
+    """{integrator: [published setting spec, ...]} (core/param_spec.h): each integrator's own settings, in the
+    order its panels draw them; {} without the native module."""
+    return {str(name): list(specs) for name, specs in _cap("integrator_params", {}).items()}
+
+
+def common_params():
+    """The settings every integrator reads (samples, seed, sampler, filter, transparency, stopping rules)."""
+    return list(_cap("common_params", []))
 
 
 def row(columns, values):

@@ -3,8 +3,9 @@ the object, material or view layer, so nothing is dropped without a word.
 
 Checked: motion blur, a view layer's Material Override, render passes Candela does not write (every use_pass_*
 beyond Combined, Depth, Normal and Object Index, plus Cycles' own), shader AOVs and light groups, volumes (Volume
-objects, a material's or the world's Volume output), displacement (a material's Displacement output, which Cycles
-uses for bump or true displacement), hair (hair particle systems and Curves objects), stereo for panoramic cameras
+objects, a material's or the world's Volume output), true displacement (a material's Displacement output with
+the Displacement Only or Displacement and Bump method: Candela renders the output as bump mapping, Cycles' Bump Only,
+which is not reported), hair (hair particle systems and Curves objects), stereo for panoramic cameras
 and depth of field through a panorama.
 """
 
@@ -61,10 +62,21 @@ def material_messages(material):
     tree = material.node_tree if material.use_nodes else None
     if _linked(tree, "ShaderNodeOutputMaterial", "Volume"):
         out.append(f"Candela: material '{material.name}': the Volume output is ignored (no volume rendering)")
-    if _linked(tree, "ShaderNodeOutputMaterial", "Displacement"):
-        out.append(f"Candela: material '{material.name}': the Displacement output is ignored (no bump or "
-                   "displacement from it)")
+    method = displacement_method(material)
+    if method != "BUMP" and _linked(tree, "ShaderNodeOutputMaterial", "Displacement"):
+        label = {"DISPLACEMENT": "Displacement Only", "BOTH": "Displacement and Bump"}.get(method, method)
+        out.append(f"Candela: material '{material.name}': the Displacement output's true displacement (method "
+                   f"{label}) is not rendered: the surface does not move, the output is rendered as bump mapping only")
     return out
+
+
+def displacement_method(material):
+    """Cycles' displacement method of a material ('BUMP', 'DISPLACEMENT' or 'BOTH'; Blender 3.4 keeps it in the
+    Cycles add-on's settings, later versions on the material); 'BUMP' where neither has one."""
+    method = getattr(material, "displacement_method", None)
+    if method is None:
+        method = getattr(getattr(material, "cycles", None), "displacement_method", "BUMP")
+    return method
 
 
 def world_messages(world):

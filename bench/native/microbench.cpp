@@ -106,4 +106,4 @@ BENCHMARK(BM_CoplanarDetectionTwoGrids)->Arg(100)->Arg(500)->Unit(benchmark::kMi
 }  // namespace
 }  // namespace candela
 
-BENCHMARK_MAIN();
+// main(): bench/native/texture_microbench.cpp (it adds the texture ratio table).

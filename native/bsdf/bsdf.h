@@ -212,7 +212,7 @@ struct PrincipledParams {
     bool backfacing = false;  // the path arrives on the back face: the glass sees 1/ior
 };
 
-/// The closure list Cycles 3.4's svm/closure.h builds for Principled v1 (see blender-conventions §7.1).
+/// The closure list Cycles 3.4's svm/closure.h builds for Principled v1 (docs/conventions.md §5).
 Bsdf principled_bsdf(const PrincipledParams& p);
 
 /// Glass node (Cycles: GGX/Beckmann/Sharp glass; roughness² = α). Refraction node: refraction_only.

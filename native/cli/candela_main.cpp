@@ -63,13 +63,14 @@ int main(int argc, char** argv) {
         candela::Session session(std::move(dump.arrays), std::move(dump.params));
         std::signal(SIGINT, on_sigint);
         session.start();
-        int last_reported = -1;
+        int64_t last_reported = -1;
         while (!session.wait(0.1)) {
             if (g_interrupted) session.cancel();
             const auto p = session.progress();
-            if (!quiet && p.samples_done != last_reported) {
-                std::fprintf(stderr, "\r%s: sample %d/%d", candela::phase_name(p.phase), p.samples_done, p.samples_total);
-                last_reported = p.samples_done;
+            if (!quiet && p.work_done != last_reported) {
+                std::fprintf(stderr, "\r%s: %s %lld/%lld", candela::phase_name(p.phase), p.unit.c_str(),
+                             (long long)p.work_done, (long long)p.work_total);
+                last_reported = p.work_done;
             }
         }
         session.join();
@@ -85,7 +86,7 @@ int main(int argc, char** argv) {
         const auto st = session.stats();
         if (!quiet)
             std::printf("Candela: %dx%d, %d samples/pixel in %.3f s render (%.3f s build): %.0f samples/s, %.0f rays/s -> %s%s\n",
-                        session.width(), session.height(), session.progress().samples_done, st.render_seconds,
+                        session.width(), session.height(), int(session.progress().work_done), st.render_seconds,
                         st.build_seconds, st.samples_per_second,
                         st.render_seconds > 0 ? double(st.rays) / st.render_seconds : 0.0, output.c_str(),
                         g_interrupted ? " (cancelled: partial image)" : "");

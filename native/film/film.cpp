@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "film/pixel_filter.h"
 
 namespace candela {
 
@@ -13,7 +14,6 @@ Film::Film(int width, int height, int origin_x, int origin_y, int tile_size)
     if (tile_size <= 0) throw InvalidParameter("tile_size must be positive");
     const size_t count = size_t(width) * size_t(height);
     m_pixels.resize(count);
-    m_splats.assign(count, Color(0.f));
     for (int y = 0; y < height; y += tile_size)
         for (int x = 0; x < width; x += tile_size)
             m_tiles.push_back({x, y, std::min(x + tile_size, width), std::min(y + tile_size, height)});
@@ -29,15 +29,49 @@ void Film::add_tile(size_t tile_index, const std::vector<PixelAccum>& tile_pixel
             m_pixels[size_t(y) * m_width + x].add(tile_pixels[size_t(y - t.y0) * t.width() + (x - t.x0)]);
 }
 
-void Film::add_splats(const std::vector<SplatBuffer>& buffers) {
+void Film::add_splats(const SplatBuffer& buffer, const PixelFilter& filter,
+                      const double (&samples)[k_noise_replicates]) {
+    // The footprint of a splat at raster x: pixels p whose centre p + ½ lies within ±support/2 of x, each with
+    // weight pdf(x − p − ½) per axis (the filter is separable). A Blackman–Harris of width 1.5 covers 3–4 pixels
+    // per axis, a Gaussian of width 1.5 5–6.
+    const float half = 0.5f * filter.support();
+    constexpr int k_max_span = 64;
     std::lock_guard<std::mutex> lock(m_splat_lock);
-    for (const auto& b : buffers)
-        for (const auto& e : b.entries) m_splats[e.pixel] += e.value;
+    if (m_splats.empty()) m_splats.resize(m_pixels.size());
+    for (uint32_t r = 0; r < k_noise_replicates; ++r) m_splat_samples[r] += samples[r];
+    for (const SplatBuffer::Entry& e : buffer.entries()) {
+        if (!(e.replicate < k_noise_replicates) || !is_finite(e.value)) continue;
+        const float fx = e.x - float(m_origin_x), fy = e.y - float(m_origin_y);  // film coordinates
+        const int x0 = std::max(0, int(std::ceil(fx - half - 0.5f))), x1 = std::min(m_width - 1, int(std::floor(fx + half - 0.5f)));
+        const int y0 = std::max(0, int(std::ceil(fy - half - 0.5f))), y1 = std::min(m_height - 1, int(std::floor(fy + half - 0.5f)));
+        if (x0 > x1 || y0 > y1 || x1 - x0 >= k_max_span || y1 - y0 >= k_max_span) continue;
+        float wx[k_max_span], wy[k_max_span];
+        for (int x = x0; x <= x1; ++x) wx[x - x0] = filter.pdf(fx - (float(x) + 0.5f));
+        for (int y = y0; y <= y1; ++y) wy[y - y0] = filter.pdf(fy - (float(y) + 0.5f));
+        const double lum = luminance(e.value);
+        for (int y = y0; y <= y1; ++y) {
+            if (wy[y - y0] == 0.f) continue;
+            for (int x = x0; x <= x1; ++x) {
+                const double w = double(wx[x - x0]) * double(wy[y - y0]);
+                if (w == 0.0) continue;
+                SplatAccum& a = m_splats[size_t(y) * m_width + x];
+                a.r += w * e.value.x;
+                a.g += w * e.value.y;
+                a.b += w * e.value.z;
+                a.rep_lum[e.replicate] += w * lum;
+            }
+        }
+    }
 }
 
-void Film::set_splat_scale(double scale) {
+double Film::splat_samples(uint32_t replicate) const {
     std::lock_guard<std::mutex> lock(m_splat_lock);
-    m_splat_scale = scale;
+    return replicate < k_noise_replicates ? m_splat_samples[replicate] : 0.0;
+}
+
+bool Film::has_splats() const {
+    std::lock_guard<std::mutex> lock(m_splat_lock);
+    return !m_splats.empty();
 }
 
 template <typename F>
@@ -64,10 +98,16 @@ std::vector<float> Film::combined() const {
             }
     });
     std::lock_guard<std::mutex> lock(m_splat_lock);
+    if (m_splats.empty()) return out;
+    double total = 0.0;
+    for (double n : m_splat_samples) total += n;
+    const double scale = total > 0.0 ? 1.0 / total : 0.0;
     for (size_t i = 0; i < m_splats.size(); ++i) {
-        out[4 * i] += float(m_splats[i].x * m_splat_scale);
-        out[4 * i + 1] += float(m_splats[i].y * m_splat_scale);
-        out[4 * i + 2] += float(m_splats[i].z * m_splat_scale);
+        const SplatAccum& a = m_splats[i];
+        out[4 * i] = float(double(out[4 * i]) + a.r * scale);
+        out[4 * i + 1] = float(double(out[4 * i + 1]) + a.g * scale);
+        out[4 * i + 2] = float(double(out[4 * i + 2]) + a.b * scale);
+        if (m_pixels[i].n == 0 && total > 0.0) out[4 * i + 3] = 1.f;  // only splats: an opaque pixel
     }
     return out;
 }
@@ -75,11 +115,19 @@ std::vector<float> Film::combined() const {
 std::vector<float> Film::noise() const {
     const double scale = std::sqrt(noise_estimate().calibration);
     std::vector<float> out(size_t(m_width) * m_height, 0.f);
+    std::lock_guard<std::mutex> splat_lock(m_splat_lock);
+    const bool splats = !m_splats.empty();
     for_each_tile_locked([&](const Tile& t) {
         for (int y = t.y0; y < t.y1; ++y)
             for (int x = t.x0; x < t.x1; ++x) {
                 const size_t i = size_t(y) * m_width + x;
-                out[i] = float(scale * std::sqrt(moment_variance_of_mean(m_pixels[i])));
+                if (!splats) {
+                    out[i] = float(scale * std::sqrt(moment_variance_of_mean(m_pixels[i])));
+                } else {
+                    // Splats have no per-sample moments: the pixel's own replicate estimate (unbiased, noisier).
+                    const double v = replicate_variance_of_mean(m_pixels[i], m_splats[i], m_splat_samples);
+                    out[i] = v > 0.0 ? float(std::sqrt(v)) : 0.f;
+                }
             }
     });
     return out;
@@ -87,9 +135,15 @@ std::vector<float> Film::noise() const {
 
 Film::NoiseEstimate Film::noise_estimate() const {
     NoiseTally tally;
+    std::lock_guard<std::mutex> splat_lock(m_splat_lock);
+    const bool splats = !m_splats.empty();
     for_each_tile_locked([&](const Tile& t) {
         for (int y = t.y0; y < t.y1; ++y)
-            for (int x = t.x0; x < t.x1; ++x) tally.add(m_pixels[size_t(y) * m_width + x]);
+            for (int x = t.x0; x < t.x1; ++x) {
+                const size_t i = size_t(y) * m_width + x;
+                if (splats) tally.add(m_pixels[i], m_splats[i], m_splat_samples);
+                else tally.add(m_pixels[i]);
+            }
     });
     return tally.result();
 }
@@ -104,6 +158,12 @@ PixelAccum Film::pixel(int x, int y) const {
         }
     }
     throw InternalError("pixel not covered by a tile");
+}
+
+SplatAccum Film::splat(int x, int y) const {
+    if (x < 0 || y < 0 || x >= m_width || y >= m_height) throw InvalidParameter("pixel outside the film");
+    std::lock_guard<std::mutex> lock(m_splat_lock);
+    return m_splats.empty() ? SplatAccum{} : m_splats[size_t(y) * m_width + x];
 }
 
 uint32_t Film::min_samples() const {

@@ -3,7 +3,17 @@
 // bidirectional and Metropolis contributions). Pixels live in tiles; a worker adds a whole tile's pass
 // under that tile's lock, and readers copy tile by tile, so progressive display never sees half-written
 // pixels. Sums are double precision and a pixel's sum depends only on its own samples, added in sample
-// order: images do not depend on thread count. Splats are merged in work-item order for the same reason.
+// order: images do not depend on thread count.
+//
+// Splats. A work item (a batch of light paths, say) collects its contributions at raster positions in a
+// SplatBuffer; buffers are merged into the film one at a time in work-item order (core/parallel_ordered.h), so
+// the sums are the same for every thread count. A splat is spread over the pixels of the filter's footprint
+// with the weights PixelFilter::pdf gives, the density with which filter importance sampling places camera
+// samples: a pixel then receives in expectation what camera samples estimate for it, and splatted and camera
+// contributions agree. Each merge also says how many samples its splats are normalised by, per noise
+// replicate (`add_splats(buffer, samples)`): the image is Σ splats / Σ samples, so a light tracer counts light
+// paths per pixel, a bidirectional tracer camera samples per pixel. The film keeps the splats' luminance per
+// replicate too, so the noise estimate covers splatted light.
 #pragma once
 
 #include <cstdint>
@@ -53,14 +63,34 @@ struct Tile {
     int height() const { return y1 - y0; }
 };
 
-/// Contributions a work item deposits anywhere on the film (film pixel coordinates).
-struct SplatBuffer {
-    struct Entry {
-        uint32_t pixel;
-        Color value;
-    };
-    std::vector<Entry> entries;
+/// Splatted contributions of one pixel: their sums, and their luminance per noise replicate.
+struct SplatAccum {
+    double r = 0, g = 0, b = 0;
+    double rep_lum[k_noise_replicates] = {};
+    bool any() const { return r != 0.0 || g != 0.0 || b != 0.0; }
 };
+
+/// Contributions a work item deposits anywhere on the image, at full-frame raster positions, until the film
+/// merges them (Film::add_splats). `replicate` is the noise replicate of the sample that made the contribution.
+class SplatBuffer {
+public:
+    struct Entry {
+        float x, y;
+        Color value;
+        uint32_t replicate;
+    };
+    void add(Vec2 raster, const Color& value, uint32_t replicate) {
+        m_entries.push_back({raster.x, raster.y, value, replicate});
+    }
+    const std::vector<Entry>& entries() const { return m_entries; }
+    size_t size() const { return m_entries.size(); }
+    void clear() { m_entries.clear(); }
+
+private:
+    std::vector<Entry> m_entries;
+};
+
+class PixelFilter;
 
 class Film {
 public:
@@ -75,11 +105,16 @@ public:
 
     /// Adds a tile's worth of accumulated samples (row-major within the tile).
     void add_tile(size_t tile_index, const std::vector<PixelAccum>& tile_pixels);
-    /// Merges splat buffers in the given order; `scale` multiplies them when resolving (1/paths).
-    void add_splats(const std::vector<SplatBuffer>& buffers);
-    void set_splat_scale(double scale);
+    /// Merges one buffer of splats, spread over `filter`'s footprint (pixels outside the film are dropped), and
+    /// counts `samples[r]` more samples of replicate r that the splats are normalised by.
+    void add_splats(const SplatBuffer& buffer, const PixelFilter& filter, const double (&samples)[k_noise_replicates]);
+    /// Samples the splats are normalised by, per replicate.
+    double splat_samples(uint32_t replicate) const;
+    bool has_splats() const;
 
-    /// "Combined" as RGBA float32, rows bottom to top (Blender's order); (W·H·4) floats.
+    /// "Combined" as RGBA float32, rows bottom to top (Blender's order); (W·H·4) floats. A pixel is its camera
+    /// samples' mean plus Σ splats / Σ splat samples; its alpha is the camera samples' (film transparency,
+    /// holdouts), or 1 where only splats reached the film.
     std::vector<float> combined() const;
     /// "Noise": per pixel, the estimated standard error of the pixel's mean luminance: the running-moment
     /// figure √(s²/n) scaled by the image's replicate calibration √κ (noise_estimate.h), so that its mean
@@ -92,6 +127,7 @@ public:
     NoiseEstimate noise_estimate() const;
     /// A copy of one pixel's accumulated samples (film coordinates, y from the bottom), for diagnostics and tests.
     PixelAccum pixel(int x, int y) const;
+    SplatAccum splat(int x, int y) const;
     /// Samples taken per pixel (minimum over the film).
     uint32_t min_samples() const;
 
@@ -102,8 +138,8 @@ private:
     int m_width, m_height, m_origin_x, m_origin_y;
     std::vector<Tile> m_tiles;
     std::vector<PixelAccum> m_pixels;  // row-major, bottom row first
-    std::vector<Color> m_splats;
-    double m_splat_scale = 1.0;
+    std::vector<SplatAccum> m_splats;  // empty until the first add_splats
+    double m_splat_samples[k_noise_replicates] = {};
     std::unique_ptr<std::mutex[]> m_tile_locks;
     mutable std::mutex m_splat_lock;
 };

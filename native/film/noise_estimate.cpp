@@ -19,6 +19,22 @@ double replicate_variance_of_mean(const PixelAccum& p) {
     return between / (double(k_noise_replicates - 1) * p.n);
 }
 
+double replicate_variance_of_mean(const PixelAccum& p, const SplatAccum& s,
+                                  const double (&splat_samples)[k_noise_replicates]) {
+    double m[k_noise_replicates], w[k_noise_replicates], weight = 0.0, mean = 0.0;
+    for (uint32_t r = 0; r < k_noise_replicates; ++r) {
+        if (!(splat_samples[r] > 0.0) || (p.n > 0 && p.rep_n[r] == 0)) return -1.0;
+        m[r] = (p.rep_n[r] ? p.rep_lum[r] / p.rep_n[r] : 0.0) + s.rep_lum[r] / splat_samples[r];
+        w[r] = p.n > 0 ? double(p.rep_n[r]) : splat_samples[r];
+        weight += w[r];
+        mean += w[r] * m[r];
+    }
+    mean /= weight;
+    double between = 0.0;
+    for (uint32_t r = 0; r < k_noise_replicates; ++r) between += w[r] * (m[r] - mean) * (m[r] - mean);
+    return between / (double(k_noise_replicates - 1) * weight);
+}
+
 double moment_variance_of_mean(const PixelAccum& p) {
     if (p.n < 2) return 0.0;
     const double mean = p.lum_sum() / p.n;
@@ -31,6 +47,23 @@ void NoiseTally::add(const PixelAccum& p) {
     if (p.n) m_lum += p.lum_sum() / p.n;
     m_moment_var += moment_variance_of_mean(p);
     const double v = replicate_variance_of_mean(p);
+    if (v < 0.0) {
+        m_complete = false;
+        return;
+    }
+    m_var += v;
+    m_var_sq += v * v;
+}
+
+void NoiseTally::add(const PixelAccum& p, const SplatAccum& s, const double (&splat_samples)[k_noise_replicates]) {
+    ++m_pixels;
+    double total = 0.0;
+    for (double n : splat_samples) total += n;
+    const double splat_lum = total > 0.0 ? (0.2126 * s.r + 0.7152 * s.g + 0.0722 * s.b) / total : 0.0;
+    m_lum += (p.n ? p.lum_sum() / p.n : 0.0) + splat_lum;
+    const double v = replicate_variance_of_mean(p, s, splat_samples);
+    // Splats have no per-sample moments: the moment figure falls back on the replicate estimate.
+    m_moment_var += p.n ? moment_variance_of_mean(p) : std::max(v, 0.0);
     if (v < 0.0) {
         m_complete = false;
         return;

@@ -55,9 +55,15 @@ struct NoiseEstimate {
 };
 
 struct PixelAccum;
+struct SplatAccum;
 
 /// Var(pixel mean luminance) from the replicates; negative when some replicate has no sample yet.
 double replicate_variance_of_mean(const PixelAccum& p);
+/// The same for a pixel with splatted contributions too (film.h): replicate r's estimate is its camera samples'
+/// mean plus its splats' luminance over its splat samples N_r, m_r = cam_r + S_r/N_r, and the replicates are
+/// weighted by their camera sample counts (by N_r where the pixel has no camera samples). Splatted light then
+/// counts in the estimate as long as each replicate's splats come only from that replicate's samples.
+double replicate_variance_of_mean(const PixelAccum& p, const SplatAccum& s, const double (&splat_samples)[k_noise_replicates]);
 /// s²/n from the running moments (independent-sample formula); 0 below two samples.
 double moment_variance_of_mean(const PixelAccum& p);
 
@@ -65,6 +71,7 @@ double moment_variance_of_mean(const PixelAccum& p);
 class NoiseTally {
 public:
     void add(const PixelAccum& p);
+    void add(const PixelAccum& p, const SplatAccum& s, const double (&splat_samples)[k_noise_replicates]);
     NoiseEstimate result() const;
 
 private:

@@ -54,6 +54,17 @@ float PixelFilter::evaluate(float x) const {
     return 0.35875f - 0.48829f * std::cos(v) + 0.14128f * std::cos(2.f * v) - 0.01168f * std::cos(3.f * v);
 }
 
+float PixelFilter::pdf(float x) const {
+    const float half = 0.5f * m_support;
+    if (!(std::fabs(x) <= half)) return 0.f;
+    if (m_kind == Kind::Box) return 1.f / m_support;
+    // sample_1d maps u ∈ [i, i+1]/N linearly onto [inv[i], inv[i+1]]: density (1/N)/(inv[i+1] − inv[i]) there.
+    const auto it = std::upper_bound(m_inverse_cdf.begin(), m_inverse_cdf.end(), x);
+    const size_t i = std::min(size_t(std::max<std::ptrdiff_t>(it - m_inverse_cdf.begin() - 1, 0)), size_t(k_inverse_size - 1));
+    const float width = m_inverse_cdf[i + 1] - m_inverse_cdf[i];
+    return width > 0.f ? (1.f / k_inverse_size) / width : 0.f;
+}
+
 Vec2 PixelFilter::sample(Vec2 u) const {
     if (m_kind == Kind::Box) return {(u.x - 0.5f) * m_support, (u.y - 0.5f) * m_support};
     return {sample_1d(u.x), sample_1d(u.y)};

@@ -23,6 +23,11 @@ public:
 
     /// The 1-D filter profile at offset x (not normalised; 0 outside ±support()/2).
     float evaluate(float x) const;
+    /// The density of sample()'s offsets along one axis at offset x: the normalised filter exactly as filter
+    /// importance sampling realises it (the derivative of the tabulated inverse CDF sample() interpolates), so a
+    /// contribution splatted at a raster position with these weights (SplatBuffer) estimates what camera
+    /// samples estimate. ∫ pdf = 1; 0 outside ±support()/2.
+    float pdf(float x) const;
     float width() const { return m_width; }
     /// Total extent of the profile in pixels.
     float support() const { return m_support; }

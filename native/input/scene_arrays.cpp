@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "input/scene_arrays.h"
 
 #include <cmath>
@@ -32,6 +33,7 @@ const std::vector<ArraySpec>& array_schema() {
         {"world_color", ElemType::F32, {3}, false},
         {"uvs", ElemType::F32, {-1, 3, 2}, false},
         {"tangents", ElemType::F32, {-1, 3, 4}, false},
+        {"corner_attributes", ElemType::F32, {-1, 3, -1}, false},
         {"mesh_texspace", ElemType::F32, {-1, 6}, false},
         {"textures", ElemType::F32, {-1, 4}, false},
         {"textures_u8", ElemType::U8, {-1, 4}, false},
@@ -156,6 +158,14 @@ void SceneArrays::validate() const {
     check_rows("normals", T);
     check_rows("uvs", T);
     check_rows("tangents", T);
+    check_rows("corner_attributes", T);
+    if (has("corner_attributes")) {
+        const Array& at = get("corner_attributes");
+        if (at.shape[2] % 4 != 0)
+            throw InvalidScene("scene array 'corner_attributes' needs 4 floats per attribute slot, has " +
+                               std::to_string(at.shape[2]) + " per corner");
+        check_finite(at, "corner_attributes", std::max<size_t>(3 * at.shape[2], 1));
+    }
     if (has("uvs")) check_finite(get("uvs"), "uvs", 6);
     if (has("tangents")) check_finite(get("tangents"), "tangents", 12);
     if (has("vertex_normals") && rows("vertex_normals") != V)

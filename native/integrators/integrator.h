@@ -1,11 +1,14 @@
-// The integrator interface and its registry. Registry names are the add-on's `integrator` enum
-// identifiers; unknown names throw InvalidParameter listing the valid ones.
+// The integrator interface and its registry. Registry names are the add-on's `integrator` enum identifiers;
+// each entry publishes its settings (core/param_spec.h) beside the common ones every integrator reads
+// (common_param_specs()), and unknown names throw InvalidParameter listing the valid ones.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "core/param_spec.h"
 #include "core/params.h"
 #include "film/film.h"
 #include "integrators/render_context.h"
@@ -13,23 +16,37 @@
 
 namespace candela {
 
+/// How much work a render is, in the integrator's own unit (the progress the user sees: "Sample 12/64").
+struct WorkBudget {
+    int64_t total = 1;
+    const char* unit = "sample";  // singular, lower case: "sample", "light path", "iteration", "mutation"
+};
+
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    /// Renders into the film until done or cancelled (returns normally on cancel, keeping the partial
-    /// image). Must not depend on thread count or scheduling for a given seed.
+    /// Renders into the film until done or cancelled (returns normally on cancel, keeping the partial image),
+    /// through the progressive driver (integrators/progressive_driver.h). Must not depend on thread count or
+    /// scheduling for a given seed.
     virtual void render(const Scene& scene, Film& film, RenderContext& ctx) = 0;
-    /// Samples per pixel the render will take (for progress).
-    virtual int samples_per_pixel() const = 0;
+    virtual WorkBudget budget() const = 0;
 };
 
 struct IntegratorEntry {
-    const char* name;
-    const char* description;
+    const char* name;         // the add-on's enum identifier ("PATH")
+    const char* label;        // what the menu shows ("Path Tracing")
+    const char* description;  // the tooltip
     std::unique_ptr<Integrator> (*create)(const Params&);
+    const std::vector<ParamSpec>& (*specs)();  // its own settings, in the order its panels draw them
+    /// The memory its own data will take for these params and a film of `film_pixels` (photon maps, caches,
+    /// splat buffers), for the session's estimate; null: nothing beyond the scene and the film. It may throw
+    /// InvalidParameter naming the setting whose budget cannot fit.
+    double (*memory_bytes)(const Params& params, double film_pixels) = nullptr;
 };
 
 const std::vector<IntegratorEntry>& integrator_registry();
+const IntegratorEntry& find_integrator(const std::string& name);
+/// The integrator `params` asks for ("integrator", default PATH), built from its settings.
 std::unique_ptr<Integrator> make_integrator(const Params& params);
 
 }  // namespace candela

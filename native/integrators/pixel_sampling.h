@@ -1,9 +1,12 @@
-// Camera-sample settings shared by every integrator that traces from the camera.
+// Camera-sample settings shared by every integrator: the budget, the sampler, the pixel filter, the film's
+// transparency and the stopping rules. Published as common_param_specs() (core/param_spec.h).
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
+#include "core/param_spec.h"
 #include "core/params.h"
 #include "film/pixel_filter.h"
 #include "sampling/sampler.h"
@@ -11,7 +14,7 @@
 namespace candela {
 
 struct PixelSampling {
-    int samples = 64;
+    int samples = 64;              // the budget in the integrator's unit (camera samples per pixel for PATH)
     uint64_t seed = 0;
     std::string sampler = "SOBOL";
     PixelFilter filter{"BLACKMAN_HARRIS", 1.5f};
@@ -28,5 +31,8 @@ struct PixelSampling {
     /// honest under stratified and QMC sampling.
     Sampler replicate_sampler(uint32_t replicate) const;
 };
+
+/// The settings every integrator reads (PixelSampling's), published beside each integrator's own.
+const std::vector<ParamSpec>& common_param_specs();
 
 }  // namespace candela

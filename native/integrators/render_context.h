@@ -1,10 +1,14 @@
-// What an integrator gets besides the scene and the film: the cancel flag, the thread count and the
-// counters the session reports as progress and statistics.
+// What an integrator gets besides the scene and the film: the cancel flag, the thread count, the counters the
+// session reports as progress and statistics, the current stage (a pre-pass such as "Tracing photons" with its
+// own progress) and the log that reaches the user.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
+#include <mutex>
+#include <string>
 
+#include "core/message_log.h"
 #include "core/parallel.h"
 #include "film/aov_film.h"
 
@@ -14,14 +18,45 @@ namespace candela {
 enum class StopReason : int { Running = 0, Samples, TimeLimit, NoiseThreshold, Cancelled };
 const char* stop_reason_name(StopReason r);
 
+/// A named stage of the render and how far it is ("Tracing photons", 3.2 M of 10 M). No stage: the progressive
+/// render itself, counted by RenderCounters::work_done in the integrator's work unit.
+class StageProgress {
+public:
+    struct Snapshot {
+        std::string name;  // empty: no stage
+        int64_t done = 0, total = 0;
+    };
+    void begin(std::string name, int64_t total) {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        m_name = std::move(name);
+        m_done = 0;
+        m_total = total;
+    }
+    void set_done(int64_t done) { m_done.store(done, std::memory_order_relaxed); }
+    void end() { begin(std::string(), 0); }
+    Snapshot snapshot() const {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        return {m_name, m_done.load(std::memory_order_relaxed), m_total};
+    }
+
+private:
+    mutable std::mutex m_mutex;
+    std::string m_name;
+    std::atomic<int64_t> m_done{0};
+    int64_t m_total = 0;
+};
+
 struct RenderCounters {
-    std::atomic<int> samples_done{0};   // samples per pixel completed over the whole film
-    std::atomic<int> samples_total{0};
-    std::atomic<uint64_t> paths{0};     // camera paths traced
+    // Progress of the progressive render in the integrator's own unit (samples per pixel, light paths per
+    // pixel, iterations, mutations per pixel: Integrator::budget()).
+    std::atomic<int64_t> work_done{0};
+    std::atomic<int64_t> work_total{0};
+    std::atomic<uint64_t> paths{0};     // camera paths traced (or the integrator's paths: light paths, photons)
     std::atomic<uint64_t> rays{0};      // rays cast (camera, bounce and shadow rays)
     std::atomic<uint64_t> nan_samples{0};  // non-finite or negative samples dropped before the film
-    std::atomic<double> relative_error{-1.0};  // estimated relative RMSE of the image; < 0 = not known yet
+    std::atomic<double> relative_error{-1.0};  // estimated relative RMSE of the image; < 0 = not known (yet)
     std::atomic<int> stop_reason{int(StopReason::Running)};
+    StageProgress stage;
 };
 
 inline const char* stop_reason_name(StopReason r) {
@@ -38,10 +73,16 @@ struct RenderContext {
     const CancelToken& cancel;
     RenderCounters& counters;
     int threads = 0;
-    AovFilm* aovs = nullptr;  // data passes to write (camera-driven integrators), or none
+    AovFilm* aovs = nullptr;      // data passes to write (camera-driven integrators), or none
+    MessageLog* messages = nullptr;  // where log() goes (Session::take_log), or nowhere
+
+    /// A line for the user's log (Blender's Info editor and status bar).
+    void log(std::string message) const {
+        if (messages) messages->add(std::move(message));
+    }
 };
 
-/// Per-thread statistics gathered by a tracer, folded into RenderCounters once per tile.
+/// Per-thread statistics gathered by a tracer, folded into RenderCounters once per work item.
 struct PathStats {
     uint64_t rays = 0;
     uint64_t paths = 0;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/frame.h"
 #include "core/math.h"
 #include "core/parallel.h"
 
@@ -58,6 +59,28 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const ShaderLibrary> shaders, uin
     for (float& w : weights) w += floor_weight;
     m_mean = Color(float(mean[0] / (4.0 * k_pi)), float(mean[1] / (4.0 * k_pi)), float(mean[2] / (4.0 * k_pi)));
     if (total > 0.0) m_distribution = Distribution2D(weights, nu, nv);
+
+    float half_angle = 0.f;
+    if (m_shaders->sun_disc(m_program, &m_sun, &half_angle) && half_angle > 0.f) {
+        // The disc's power from a few rings of radiance samples (limb darkening makes it uneven), added to the mean
+        // the bake missed; q is its share.
+        m_sun_cos = std::cos(half_angle);
+        const float solid_angle = 2.f * k_pi * (1.f - m_sun_cos);
+        const Frame frame(m_sun);
+        Color sum(0.f);
+        constexpr int k_rings = 8, k_per_ring = 8;
+        for (int r = 0; r < k_rings; ++r)
+            for (int a = 0; a < k_per_ring; ++a) {
+                // Equal-area rings of the cone.
+                const float cos_t = 1.f - (float(r) + 0.5f) / k_rings * (1.f - m_sun_cos);
+                const float sin_t = std::sqrt(std::fmax(1.f - cos_t * cos_t, 0.f)), phi = 2.f * k_pi * (float(a) + 0.5f) / k_per_ring;
+                sum += Le(frame.to_world(Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t)));
+            }
+        const Color sun_mean = sum / float(k_rings * k_per_ring) * (solid_angle / (4.f * k_pi));
+        const float sun_power = luminance(sun_mean), map_power = luminance(m_mean);
+        m_mean += sun_mean;
+        if (sun_power > 0.f) m_sun_q = m_distribution.nu() == 0 ? 1.f : clamp(sun_power / (sun_power + map_power), 0.05f, 0.95f);
+    }
 }
 
 Color EnvironmentMap::Le(const Vec3& d) const {
@@ -67,6 +90,25 @@ Color EnvironmentMap::Le(const Vec3& d) const {
 }
 
 LightSample EnvironmentMap::sample(Vec2 u) const {
+    if (m_sun_q <= 0.f) return sample_map(u);
+    LightSample s;
+    if (u.x < m_sun_q) {  // the sun's cone, uniformly
+        const Vec2 v{u.x / m_sun_q, u.y};
+        const float cos_t = 1.f - v.x * (1.f - m_sun_cos);
+        const float sin_t = std::sqrt(std::fmax(1.f - cos_t * cos_t, 0.f)), phi = 2.f * k_pi * v.y;
+        s.wi = Frame(m_sun).to_world(Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t));
+    } else {
+        s = sample_map({std::min((u.x - m_sun_q) / (1.f - m_sun_q), k_one_minus_epsilon), u.y});
+        if (!(s.pdf > 0.f)) return s;
+    }
+    s.pdf = pdf(s.wi);
+    s.dist = std::numeric_limits<float>::infinity();
+    s.Li = Le(s.wi);
+    if (!(s.pdf > 0.f)) s = LightSample();
+    return s;
+}
+
+LightSample EnvironmentMap::sample_map(Vec2 u) const {
     LightSample s;
     if (m_distribution.nu() == 0) return s;
     float pdf_uv = 0.f;
@@ -81,6 +123,13 @@ LightSample EnvironmentMap::sample(Vec2 u) const {
 }
 
 float EnvironmentMap::pdf(const Vec3& d) const {
+    if (m_sun_q <= 0.f) return pdf_map(d);
+    const float len = length(d);
+    const float cone = len > 0.f && dot(d, m_sun) >= m_sun_cos * len ? 1.f / (2.f * k_pi * (1.f - m_sun_cos)) : 0.f;
+    return m_sun_q * cone + (1.f - m_sun_q) * pdf_map(d);
+}
+
+float EnvironmentMap::pdf_map(const Vec3& d) const {
     if (m_distribution.nu() == 0) return 0.f;
     Vec2 uv = direction_to_equirectangular(d);
     uv.x -= std::floor(uv.x);

@@ -11,6 +11,11 @@
 //     p_ω(ω) = p_uv(u, v) / (2π² sin θ)        (dω = sin θ dθ dφ = 2π² sin θ du dv).
 // The radiance itself is always the shader's exact value, never the bake, so the bake only shapes the
 // variance.
+//
+// A sun disc (a Nishita Sky Texture's: ShaderLibrary::sun_disc) is far smaller than a bake cell, so the bake
+// barely sees it: it is sampled as a strategy of its own, uniformly over its cone, with probability q (its share of
+// the power, kept within [0.05, 0.95]), and the map with 1 − q. The pdf of a direction is the mixture
+// q·p_cone + (1 − q)·p_map, which MIS with BSDF sampling uses as it is (one-sample mixture, Veach 1997 §9.2).
 #pragma once
 
 #include <cstdint>
@@ -44,6 +49,12 @@ private:
     uint32_t m_program, m_reg;
     Distribution2D m_distribution;
     Color m_mean{0.f};
+    // The sun disc strategy (q = 0: none).
+    Vec3 m_sun{0.f, 0.f, 1.f};
+    float m_sun_cos = 1.f, m_sun_q = 0.f;
+
+    LightSample sample_map(Vec2 u) const;
+    float pdf_map(const Vec3& d) const;
 };
 
 }  // namespace candela

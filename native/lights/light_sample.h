@@ -12,7 +12,7 @@ namespace candela {
 /// How area-like emitters (emissive triangles, rectangular area lights) are sampled — the add-on's
 /// `light_pdf` option. AREA: a uniform point on the emitter, p_ω = d²/(A|cosθ_l|). SOLID_ANGLE: uniform in
 /// the solid angle the emitter subtends (spherical triangle / rectangle), p_ω = 1/Ω, falling back to AREA
-/// where that is not robust (robustness.md §2); the pdf evaluation mirrors the same branch.
+/// where that is not robust (docs/robustness-notes.md §2); the pdf evaluation mirrors the same branch.
 enum class LightPdfMode : uint8_t { Area, SolidAngle };
 
 /// "AREA" / "SOLID_ANGLE" (throws InvalidScene for anything else) and back.

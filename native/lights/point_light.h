@@ -1,4 +1,4 @@
-// Blender point and spot lights with Cycles 3.4's units (blender-conventions.md §5):
+// Blender point and spot lights with Cycles 3.4's units (docs/conventions.md §2.1, §2.2):
 //   intensity I = S/(4π) W/sr for power S (colour × energy);
 //   radius r > 0: a disk of radius r facing the shading point with radiance L = S/(4π²r²) — the same
 //   flux, with soft shadows; spot: I(θ) = S/(4π)·cosθ·smoothstep(...) (the extra cosθ is 3.4's), where θ is

@@ -1,4 +1,4 @@
-// Solid-angle sampling of area-like emitters (robustness.md §2):
+// Solid-angle sampling of area-like emitters (docs/robustness-notes.md §2):
 //   - spherical triangles: Arvo 1995, "Stratified Sampling of Spherical Triangles", structured as in
 //     pbrt-v4 (plane normals, stable vertex angles, clamped cos b′); solid angle by Van Oosterom–Strackee;
 //   - spherical rectangles: Ureña, Fajardo & King 2013, "An Area-Preserving Parametrization for Spherical

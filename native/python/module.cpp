@@ -12,6 +12,7 @@
 #include "film/exr_io.h"
 #include "film/pixel_filter.h"
 #include "integrators/integrator.h"
+#include "integrators/pixel_sampling.h"
 #include "lights/light.h"
 #include "sampling/sampler.h"
 #include "scene/ray_visibility.h"
@@ -26,7 +27,9 @@ using namespace candela;
 
 namespace {
 
-constexpr int k_abi_version = 4;  // 2: closure table; 3: shader programs, textures, UVs; 4: light column visible_camera, vertex_normals
+// 2: closure table; 3: shader programs, textures, UVs; 4: light column visible_camera, vertex_normals; 5: published
+// integrator settings (capabilities' integrator_params, common_params), progress in the integrator's unit and stages.
+constexpr int k_abi_version = 5;
 
 template <typename T>
 void add_array(SceneArrays& arrays, const std::string& key, ElemType type, const py::handle& value) {
@@ -94,11 +97,63 @@ std::unique_ptr<Session> make_session(const py::dict& arrays_dict, const py::dic
     return session;
 }
 
+/// A published setting as the add-on builds its property from it (core/param_spec.h).
+py::dict spec_dict(const ParamSpec& s) {
+    py::dict d;
+    d["key"] = s.key;
+    d["label"] = s.label;
+    d["description"] = s.description;
+    d["group"] = s.group;
+    d["active_if"] = s.active_if;
+    switch (s.type) {
+        case ParamType::Bool:
+            d["type"] = "BOOL";
+            d["default"] = s.default_value != 0.0;
+            break;
+        case ParamType::Int:
+            d["type"] = "INT";
+            d["default"] = int64_t(s.default_value);
+            d["min"] = int64_t(s.min);
+            d["max"] = int64_t(s.max);
+            d["soft_max"] = int64_t(s.soft_max > 0.0 ? s.soft_max : s.max);
+            break;
+        case ParamType::Float:
+            d["type"] = "FLOAT";
+            d["default"] = s.default_value;
+            d["min"] = s.min;
+            d["max"] = s.max;
+            d["soft_max"] = s.soft_max > 0.0 ? s.soft_max : s.max;
+            break;
+        case ParamType::Enum: {
+            d["type"] = "ENUM";
+            d["default"] = s.default_item;
+            py::list items;
+            for (const EnumItem& item : s.items) items.append(py::make_tuple(item.id, item.label, item.description));
+            d["items"] = items;
+            break;
+        }
+    }
+    return d;
+}
+
+py::list spec_list(const std::vector<ParamSpec>& specs) {
+    py::list out;
+    for (const ParamSpec& s : specs) out.append(spec_dict(s));
+    return out;
+}
+
 py::dict capabilities() {
     py::dict d;
     py::list integrators;
-    for (const auto& e : integrator_registry()) integrators.append(py::make_tuple(e.name, e.description));
+    py::dict integrator_params;
+    for (const auto& e : integrator_registry()) {
+        integrators.append(py::make_tuple(e.name, e.description, e.label));
+        integrator_params[py::str(e.name)] = spec_list(e.specs());
+    }
     d["integrators"] = integrators;
+    d["integrator_params"] = integrator_params;
+    d["common_params"] = spec_list(common_param_specs());
+    d["target_arch"] = CANDELA_TARGET_ARCH;
     d["samplers"] = sampler_names();
     d["pixel_filters"] = PixelFilter::names();
     d["material_columns"] = material_columns();
@@ -138,6 +193,15 @@ py::dict capabilities() {
     d["tex_color_spaces"] = enum_dict(tex_color_space_names());
     d["tex_storages"] = enum_dict(tex_storage_names());
     d["input_targets"] = enum_dict(input_target_names());
+    d["musgrave_types"] = enum_dict(musgrave_type_names());
+    d["voronoi_features"] = enum_dict(voronoi_feature_names());
+    d["voronoi_metrics"] = enum_dict(voronoi_metric_names());
+    d["wave_types"] = enum_dict(wave_type_names());
+    d["wave_profiles"] = enum_dict(wave_profile_names());
+    d["gradient_types"] = enum_dict(gradient_type_names());
+    d["vector_math_ops"] = enum_dict(vector_math_op_names());
+    d["map_range_types"] = enum_dict(map_range_type_names());
+    d["sky_models"] = enum_dict(sky_model_names());
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;
@@ -275,8 +339,13 @@ PYBIND11_MODULE(_native, m) {
                  const SessionProgress p = s.progress();
                  py::dict d;
                  d["phase"] = phase_name(p.phase);
-                 d["samples_done"] = p.samples_done;
-                 d["samples_total"] = p.samples_total;
+                 // samples_done/samples_total: the progress in the integrator's unit ("unit").
+                 d["samples_done"] = p.work_done;
+                 d["samples_total"] = p.work_total;
+                 d["unit"] = p.unit;
+                 d["stage"] = p.stage.name;
+                 d["stage_done"] = p.stage.done;
+                 d["stage_total"] = p.stage.total;
                  d["fraction"] = p.fraction;
                  d["elapsed_s"] = p.elapsed_s;
                  d["relative_error"] = p.relative_error >= 0.0 ? py::object(py::float_(p.relative_error)) : py::none();

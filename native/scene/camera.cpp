@@ -7,7 +7,8 @@
 
 namespace candela {
 
-Camera::Camera(const Params& params, const Affine& camera_to_world) : m_to_world(camera_to_world) {
+Camera::Camera(const Params& params, const Affine& camera_to_world)
+    : m_to_world(camera_to_world), m_to_camera(camera_to_world.inverse()) {
     m_width = params.require<int>("width");
     m_height = params.require<int>("height");
     if (m_width <= 0 || m_height <= 0)
@@ -107,6 +108,7 @@ Camera::Camera(const Params& params, const Affine& camera_to_world) : m_to_world
 
 void Camera::translate(const Vec3& offset) {
     for (int r = 0; r < 3; ++r) m_to_world.m[r][3] += offset[r];
+    m_to_camera = m_to_world.inverse();
 }
 
 Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {

@@ -16,7 +16,14 @@
 // (view_zoom, view_offset_x/y: camera view zoom and pan), lets an orthographic view start rays behind the view
 // (clip_start < 0) and, in the camera view of a panoramic camera, maps the frame to the part of the panorama the
 // viewport shows (pano_left/right/bottom/top, fractions of the camera frame).
+//
+// Camera importance (scene/camera_importance.cpp): the camera seen from the scene, for light-rooted strategies
+// (light tracing, bidirectional path tracing): connections from a world point to the lens, the raster position of
+// a camera ray, its position and direction densities, and the importance K of a connection.
 #pragma once
+
+#include <cmath>
+#include <string>
 
 #include "core/params.h"
 #include "core/transform.h"
@@ -32,8 +39,31 @@ struct Ray {
     uint8_t type = k_ray_all;  // RayType: which objects it can hit (scene/ray_visibility.h)
 };
 
+/// A connection from a world point to the camera, for light-rooted strategies.
+struct CameraConnection {
+    Vec3 wi;                 // unit direction from the reference point toward lens_point
+    float dist = 0.f;        // distance from the reference point to lens_point
+    Vec3 lens_point;         // where the camera ray through the reference point starts (on the aperture; on the
+                             // clip_start plane for orthographic)
+    Vec2 raster;             // the full-frame raster position that camera ray has
+    /// K: for a camera ray of generate_ray with raster uniform over the full frame and u_lens uniform,
+    /// E_lens[K·|cos θ_ref|]·a is the probability that it hits a small disk of area a at the reference point whose
+    /// normal makes the angle θ_ref with wi. Perspective (pinhole or thin lens): 1/(A_img·cos³θ·dist²), θ between
+    /// the ray and the view axis, A_img = image_plane_area(); orthographic with depth of field: 1/(A_view·cos θ).
+    float importance = 0.f;
+    float pdf_pos = 1.f;     // area density of lens_point under generate_ray's lens sampling (1 and delta_pos for a
+                             // pinhole; orthographic with depth of field: 1/A_view on the clip_start plane)
+    float pdf_dir = 0.f;     // solid-angle density of the ray direction under generate_ray with raster uniform over the full frame
+    bool delta_pos = false;
+};
+
 class Camera {
 public:
+    /// What an integrator that needs a connection to the camera reports for a camera that has none
+    /// (not_connectable_message()).
+    static constexpr const char* k_not_connectable_message =
+        "the orthographic camera without depth of field has no light-tracing strategy: use PATH or enable depth of field";
+
     /// Reads the camera params (docs/architecture.md); camera_to_world has no scale.
     Camera(const Params& params, const Affine& camera_to_world);
 
@@ -41,8 +71,7 @@ public:
     /// [0, 1)², the sampler's Lens dimension) picks the point on the aperture; a pinhole camera ignores it.
     Ray generate_ray(Vec2 raster, Vec2 u_lens = {0.5f, 0.5f}) const;
     bool has_aperture() const { return !m_aperture.is_pinhole(); }
-    /// Panoramic projection (no viewplane): integrators that connect vertices to the camera must refuse it or
-    /// project through panorama_direction's inverse.
+    /// Panoramic projection (no viewplane).
     bool is_panoramic() const { return m_pano != Panorama::None; }
     enum class Panorama { None, Equirectangular, FisheyeEquidistant, FisheyeEquisolid };
     Panorama panorama() const { return m_pano; }
@@ -55,17 +84,59 @@ public:
     Vec3 forward() const { return normalize(m_to_world.vector(Vec3(0.f, 0.f, -1.f))); }
 
     Vec3 position() const { return m_to_world.translation(); }
+    /// The width of one pixel's footprint at `distance` from the camera (Cycles' compact ray differential of a
+    /// camera ray: the pixel's size for an orthographic camera, distance × its angle at the image centre otherwise).
+    float pixel_footprint(float distance) const {
+        const float pixel = 0.5f * (std::fabs(m_raster_to_x) + std::fabs(m_raster_to_y));
+        return m_ortho ? pixel : distance * pixel * m_tan_half_fov;
+    }
     int full_width() const { return m_width; }
     int full_height() const { return m_height; }
     /// Moves the camera by `offset` (the scene is rendered in camera-world space).
     void translate(const Vec3& offset);
 
+    // ---- Importance (scene/camera_importance.cpp) ----------------------------------------------------------
+    bool orthographic() const { return m_ortho; }
+    /// False only for a pinhole orthographic camera: its rays have one direction (a delta), so no strategy that
+    /// connects a scene point to the camera, or hits the camera, can reach it.
+    bool connectable() const { return !m_ortho || has_aperture(); }
+    /// "" if connectable(), else k_not_connectable_message (for the integrator's error or log line).
+    std::string not_connectable_message() const { return connectable() ? std::string() : k_not_connectable_message; }
+    /// A pinhole perspective camera: every ray starts at position() (CameraConnection::delta_pos).
+    bool delta_position() const { return !m_ortho && !has_aperture(); }
+    /// Samples the lens point with u_lens (the same warp generate_ray uses) and returns the connection to world
+    /// point `ref`; false if ref is behind the camera, outside the frame, or outside [clip_start, clip_end] along
+    /// the view axis (exactly the points a generate_ray ray could reach before tmax), or the camera is not
+    /// connectable.
+    /// `margin` (pixels) widens the frame: filter importance sampling sends the camera rays of border pixels up to
+    /// half the filter's support beyond it, so connections there must count too (the film keeps their weights
+    /// for the pixels inside).
+    bool connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out, float margin = 0.f) const;
+    /// The raster position of a ray generate_ray could produce (its origin on the lens / clip plane, or anywhere
+    /// on the same line; its direction): false outside the frame or if it does not point forward.
+    bool raster_of(const Ray& camera_ray, Vec2* raster, float margin = 0.f) const;
+    /// pdf_pos and pdf_dir (as in CameraConnection) of a camera ray: pdf_dir is 0 outside the frame, and both
+    /// are 0 where the ray does not leave the aperture (its support: Aperture::contains).
+    void pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir, float margin = 0.f) const;
+    /// Perspective: area of the viewplane rectangle at z = −1 (tan_half_fov included); orthographic: the
+    /// viewplane's area in world units.
+    float image_plane_area() const;
+    /// Aperture::area(): πr²/ratio for a disk, (n/2)·sin(2π/n)·r²/ratio for n blades; 0 for a pinhole.
+    float lens_area() const { return m_aperture.area(); }
+
 private:
     Ray generate_panoramic_ray(Vec2 raster) const;
     void read_panorama(const Params& params, bool pano, float sensor_width, float sensor_height, const std::string& fit,
                        float pixel_aspect_x, float pixel_aspect_y);
+    /// The raster position of viewplane point (sx, sy); false outside the full frame [0, W] × [0, H].
+    bool viewplane_to_raster(float sx, float sy, Vec2* raster, float margin = 0.f) const;
+    /// The camera-space ray of a world ray, with its origin moved along it onto the lens plane (z = 0,
+    /// perspective) or the clip_start plane (orthographic), and its direction unit length; false if it does
+    /// not point forward (d.z < 0).
+    bool to_lens_plane(const Ray& ray, Vec3* o_cam, Vec3* d_cam) const;
 
     Affine m_to_world;
+    Affine m_to_camera;  // m_to_world's inverse
     bool m_ortho = false;
     Panorama m_pano = Panorama::None;
     float m_pano_range[4] = {0.f, 0.f, 0.f, 0.f};   // equirectangular: φ = r0·u + r1, θ = r2·v + r3

@@ -1,8 +1,43 @@
 #include "scene/mesh_attributes.h"
 
+#include <algorithm>
+
 #include "input/scene_arrays.h"
 
 namespace candela {
+
+namespace {
+
+/// ∇u, ∇v per triangle: an offset d = a·e1 + b·e2 in the plane of the edges e1 = p1 − p0, e2 = p2 − p0 has
+/// (a, b) = G⁻¹·(e1·d, e2·d) with the Gram matrix G, so ∇u = Δu1·(G22·e1 − G12·e2)/det + Δu2·(G11·e2 − G12·e1)/det.
+std::vector<Vec3> uv_gradients(const SceneArrays& arrays, const std::vector<Vec2>& uv, uint32_t tri_begin,
+                               uint32_t tri_end) {
+    const Array* positions = arrays.find("positions");
+    const Array* triangles = arrays.find("triangles");
+    if (!positions || !triangles) return {};
+    const float* pos = positions->data<float>();
+    const uint32_t* tri = triangles->data<uint32_t>();
+    std::vector<Vec3> out(2 * size_t(tri_end - tri_begin), Vec3(0.f));
+    for (uint32_t t = tri_begin; t < tri_end; ++t) {
+        Vec3 p[3];
+        for (int k = 0; k < 3; ++k) {
+            const float* v = pos + 3 * size_t(tri[3 * size_t(t) + k]);
+            p[k] = Vec3(v[0], v[1], v[2]);
+        }
+        const Vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+        const float g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
+        const float det = g11 * g22 - g12 * g12;
+        if (!(det > 0.f)) continue;
+        const Vec3 w1 = (e1 * g22 - e2 * g12) / det, w2 = (e2 * g11 - e1 * g12) / det;
+        const size_t local = t - tri_begin;
+        const Vec2* c = &uv[3 * local];
+        out[2 * local] = w1 * (c[1].x - c[0].x) + w2 * (c[2].x - c[0].x);
+        out[2 * local + 1] = w1 * (c[1].y - c[0].y) + w2 * (c[2].y - c[0].y);
+    }
+    return out;
+}
+
+}  // namespace
 
 MeshAttributes MeshAttributes::load(const SceneArrays& arrays, uint32_t mesh, uint32_t tri_begin, uint32_t tri_end) {
     MeshAttributes a;
@@ -11,10 +46,17 @@ MeshAttributes MeshAttributes::load(const SceneArrays& arrays, uint32_t mesh, ui
         const float* p = uvs->data<float>() + 6 * size_t(tri_begin);
         a.uv.resize(3 * n);
         for (size_t i = 0; i < 3 * n; ++i) a.uv[i] = Vec2{p[2 * i], p[2 * i + 1]};
+        a.uv_gradient = uv_gradients(arrays, a.uv, tri_begin, tri_end);
     }
     if (const Array* t = arrays.find("tangents")) {
         const float* p = t->data<float>() + 12 * size_t(tri_begin);
         a.tangent.assign(p, p + 12 * n);
+    }
+    if (const Array* at = arrays.find("corner_attributes")) {
+        // (T, 3, 4·S): S slots of RGBA (or xyz + 1) per corner.
+        a.attribute_slots = uint32_t(at->count() / (12 * std::max<size_t>(at->shape[0], 1)));
+        const float* p = at->data<float>() + 12 * size_t(a.attribute_slots) * tri_begin;
+        a.attributes.assign(p, p + 12 * size_t(a.attribute_slots) * n);
     }
     if (const Array* ts = arrays.find("mesh_texspace")) {
         const float* p = ts->data<float>() + 6 * size_t(mesh);

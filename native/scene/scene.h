@@ -15,6 +15,7 @@
 #include "core/params.h"
 #include "core/transform.h"
 #include "lights/light.h"
+#include "lights/light_emission.h"
 #include "scene/camera.h"
 #include "scene/embree_device.h"
 #include "scene/ray_visibility.h"
@@ -33,6 +34,19 @@ struct SceneStats {
     size_t embree_bytes = 0;        // what Embree holds: vertex/index buffers and BVHs (its memory monitor)
     size_t shading_bytes = 0;       // Candela's per-triangle shading data and per-instance placements
     size_t coplanar_objects = 0;    // objects with a coplanar overlapping rival (they get the tie-break filter)
+};
+
+/// The triangles of one top-level object as Embree holds them (Scene::object_triangles), for samplers of
+/// surface points: vertex positions (camera-world space for a flattened mesh; object space for an instance, which
+/// object_to_world maps to camera-world space) and three vertex indices per triangle. Valid while the scene lives.
+struct ObjectTriangles {
+    const float* vertices = nullptr;    // x, y, z per vertex
+    const uint32_t* indices = nullptr;  // 3 per triangle
+    uint32_t triangle_count = 0;
+    bool instanced = false;
+    uint32_t mesh = 0;                  // the input mesh: the instances of one mesh share vertices and indices
+    Affine object_to_world;             // the identity for a flattened mesh (its vertices are in world space)
+    uint8_t flags = k_object_default;   // ObjectFlag bits: the ray types the object is visible to
 };
 
 class Scene : private EmissionSource {
@@ -63,6 +77,12 @@ public:
     /// (and the triangles at both ends where a filter runs, as in intersect()). d need not be a unit vector (t is
     /// then in units of |d|: a segment o → o + d is d with tmax ≤ 1).
     bool occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from = {},
+                  const PrimitiveRef& skip_to = {}) const {
+        return occluded(o, d, tmax, k_ray_shadow, skip_from, skip_to);
+    }
+    /// The same for a segment of another ray type: a connection to the camera is a CAMERA ray (objects hidden from
+    /// the camera do not block it), a shadow ray a SHADOW ray.
+    bool occluded(const Vec3& o, const Vec3& d, float tmax, RayType type, const PrimitiveRef& skip_from = {},
                   const PrimitiveRef& skip_to = {}) const;
     /// Closest emitting side of an area light along the ray before tmax·(1 + 1e-4): its index and distance. The
     /// margin mirrors the shadow rays' (they stop at 1 − 1e-4 of the light's distance), so a light lying in a
@@ -82,7 +102,14 @@ public:
     void set_camera(const Params& params, const Affine& camera_to_world);
     const std::vector<Material>& materials() const { return m_materials; }
     const LightSet& lights() const { return m_lights; }
+    /// Half the diagonal of the bounds of the geometry and the point lights (what the lights are finalized with).
     float radius() const { return m_radius; }
+    /// The bounding sphere of the geometry, area lights and point lights (camera-world space).
+    const SceneSphere& bounds() const { return m_bounds; }
+    /// BSDF flags material k can have on either side, anywhere (k_bsdf_*: reflection, transmission, diffuse,
+    /// glossy, specular = a delta lobe): the constant BSDFs' flags, or for a textured material every flag its
+    /// closures can take for some input (a Glossy closure with a roughness texture may be delta somewhere).
+    uint32_t material_flags(uint32_t k) const { return k < m_material_flags.size() ? m_material_flags[k] : 0u; }
     const SceneStats& stats() const { return m_stats; }
 
     /// Holdout weight of the surface hit seen from wo (Cycles: 1 for a holdout object, else the material's
@@ -95,8 +122,23 @@ public:
         return hit.material < m_material_holdout.size() ? m_material_holdout[hit.material] : 0.f;
     }
     bool has_holdouts() const { return m_has_holdouts; }
+    /// Whether the object hit is visible to rays of `type` (Blender's Ray Visibility).
+    bool visible_to(const SurfaceHit& hit, uint8_t type) const { return (m_object_flags[hit.object] & type) != 0; }
+    /// Ray types some object is hidden from (light-rooted integrators cannot honour DIFFUSE, GLOSSY and
+    /// TRANSMISSION visibility, and say so).
+    uint32_t hidden_ray_types() const { return m_hidden_from; }
     /// Blender's pass index of the object hit (the IndexOB pass).
     uint32_t pass_index(const SurfaceHit& hit) const;
+
+    // Geometry for samplers of surface points (scene/scene_geometry.cpp). Top-level objects are numbered
+    // 0 .. object_count() − 1 (SurfaceHit::object), one per instance with faces.
+    uint32_t object_count() const;
+    ObjectTriangles object_triangles(uint32_t object) const;
+    /// The SurfaceHit at barycentrics (b1, b2) of triangle `prim` of `object`, filled as intersect() fills a hit
+    /// there (position, normals, material, light, primitive, object), with t = 0; shade() works on it.
+    SurfaceHit surface_point(uint32_t object, uint32_t prim, float b1, float b2) const;
+    /// ObjectFlag bits of a top-level object: the ray types it is visible to, holdout.
+    uint8_t object_flags(uint32_t object) const { return m_object_flags[object]; }
     /// Embree scene handle, for benchmarks that shoot raw rays.
     RTCScene embree_scene() const { return m_top.get(); }
 
@@ -104,6 +146,8 @@ private:
     struct MeshShading;
     struct Placement;
     struct QueryContext;
+    struct Builder;  // scene/scene_build.cpp
+    friend struct Builder;
     void build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache);
     /// The SurfaceHit of Embree's hit (geometry, triangle, instance ids, barycentrics, unnormalised Ng) at
     /// distance t along `ray`.
@@ -123,7 +167,9 @@ private:
     /// turned to the side of the unit winding normal ng; ng itself for a flat triangle.
     static Vec3 shading_normal(const MeshShading& s, const Placement& pl, uint32_t prim, float b1, float b2, const Vec3& ng);
     /// The shader program's inputs at a hit on placement `pl`, seen from wo (scene/shading.cpp).
-    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl) const;
+    /// With `differentials`, also the offsets of Bump's finite differences (ShadingInputs::dp …).
+    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl,
+                                 bool differentials = false) const;
     /// The Holdout weight of a material whose weight comes from its shader program, at the hit (shading.cpp).
     float varying_holdout(const SurfaceHit& hit, const Vec3& wo) const;
     /// Whether material k's emission comes from its shader program (a textured emitter).
@@ -159,6 +205,8 @@ private:
     LightSet m_lights;
     Vec3 m_offset;  // added to world positions: −camera position
     float m_radius = 1.f;
+    SceneSphere m_bounds;
+    std::vector<uint32_t> m_material_flags;  // per material: material_flags()
     SceneStats m_stats;
 };
 

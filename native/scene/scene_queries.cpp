@@ -213,7 +213,7 @@ void Scene::intersect_packet(const Ray* rays, int n, TracedHit* hits) const {
     }
 }
 
-bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRef& skip_from,
+bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, RayType type, const PrimitiveRef& skip_from,
                      const PrimitiveRef& skip_to) const {
     // The scale-aware origin offset already keeps a shadow ray off its own surface: the skipped triangles matter
     // only to the coplanar objects' geometry filter (and to the context filter for hidden objects).
@@ -221,8 +221,8 @@ bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, const PrimitiveRe
     rtcInitIntersectContext(&context.context);
     context.skip[0] = skip_from;
     context.skip[1] = skip_to;
-    if (m_hidden_from & k_ray_shadow) {
-        context.ray_type = k_ray_shadow;
+    if (m_hidden_from & type) {
+        context.ray_type = type;
         context.object_flags = m_object_flags.data();
         context.context.filter = &Scene::filter_hits;
     }

@@ -7,7 +7,8 @@
 
 namespace candela {
 
-ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl) const {
+ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl,
+                                    bool differentials) const {
     // Where on the object the hit is: UV, tangent frame, object-space position.
     const PrimitiveRef& prim = hit.primitive;
     const MeshAttributes& attr = m_shading[pl.mesh].attributes;
@@ -20,12 +21,38 @@ ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const
     const float n_len = length(n_object);
     in.normal_object = n_len > 0.f ? n_object / n_len : Vec3(0.f, 0.f, 1.f);
     in.incoming = wo;
+    in.backfacing = dot(wo, hit.ng) < 0.f;
+    in.position = hit.p - m_offset;
+    in.true_normal = hit.ng;
+    in.object_location = pl.object_to_world.translation() - m_offset;
+    in.object_index = float(pl.pass_index);
+    in.attributes = attr.attribute_corners(prim.prim);
+    in.attribute_slots = attr.attribute_slots;
+    in.b1 = hit.b1;
+    in.b2 = hit.b2;
     Vec3 tangent;
     if (attr.tangent_at(prim.prim, hit.b1, hit.b2, &tangent, &in.tangent_sign)) {
         in.tangent = pl.object_to_world.vector(tangent);
         in.has_tangent = true;
     }
     in.normal_to_world = pl.object_to_world.normal_matrix();
+    if (differentials) {
+        // Bump's finite differences, as Cycles 3.4 takes them: offsets of one ray footprint (a camera ray's
+        // differential at the hit: docs/textures.md, "Bump") along the frame Cycles' make_orthonormals builds
+        // around the geometric normal on the viewer's side. The frame matters for curved heights (the differences
+        // are secants, not derivatives); a linear height gives the same normal for any frame.
+        const float delta = std::fmax(m_camera.pixel_footprint(length(hit.p)), 1e-7f);
+        const Vec3 n = in.backfacing ? -hit.ng : hit.ng;
+        Vec3 a = (n.x != n.y || n.x != n.z) ? Vec3(n.z - n.y, n.x - n.z, n.y - n.x) : Vec3(n.z - n.y, n.x + n.z, -n.y - n.x);
+        a = normalize(a);
+        in.dp[0] = a * delta;
+        in.dp[1] = cross(n, a) * delta;
+        for (int k = 0; k < 2; ++k) {
+            in.dobject[k] = pl.world_to_object.vector(in.dp[k]);
+            in.dgenerated[k] = attr.generated(in.object + in.dobject[k]) - in.generated;
+            in.duv[k] = attr.uv_offset(prim.prim, in.dobject[k]);
+        }
+    }
     return in;
 }
 
@@ -40,7 +67,8 @@ ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
 
     const MaterialInputs& mi = m_material_inputs[size_t(material.inputs)];
     const PrimitiveRef& prim = hit.primitive;
-    const ShadingInputs in = shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom]);
+    const ShadingInputs in = shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom],
+                                            m_shaders->uses_differentials(mi.program));
     ShaderRegisters regs(m_shaders->program_size(mi.program));
     m_shaders->evaluate(mi.program, in, regs.data());
     if (mi.emission_reg >= 0) sp.emission = vmax(regs[uint32_t(mi.emission_reg)], Color(0.f));

@@ -7,7 +7,7 @@
 
 namespace candela {
 
-/// Identifies the triangle a ray hit (Embree's ids), so a ray leaving it can skip it (robustness.md §1.2).
+/// Identifies the triangle a ray hit (Embree's ids), so a ray leaving it can skip it (docs/robustness-notes.md §1.2).
 struct PrimitiveRef {
     static constexpr uint32_t k_none = 0xFFFFFFFFu;  // RTC_INVALID_GEOMETRY_ID
     uint32_t geom = k_none, prim = k_none, inst = k_none;

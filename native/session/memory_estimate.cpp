@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "core/vec.h"
 #include "film/film.h"
+#include "integrators/integrator.h"
 
 namespace candela {
 
@@ -57,6 +58,8 @@ double available_memory_bytes() {
 MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, double film_pixels) {
     MemoryEstimate e;
     e.film_bytes = film_pixels * film_bytes_per_pixel();
+    const IntegratorEntry& integrator = find_integrator(params.get<std::string>("integrator", "PATH"));
+    if (integrator.memory_bytes) e.integrator_bytes = integrator.memory_bytes(params, film_pixels);
     const double limit_mb = params.get<double>("memory_limit_mb", 0.0);
     if (limit_mb > 0.0) {
         e.limit_bytes = limit_mb * 1e6;
@@ -121,9 +124,13 @@ MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, 
 
 std::string MemoryEstimate::refusal(const std::vector<std::string>& mesh_names) const {
     std::string s = "the render needs about " + gigabytes(total_bytes()) + " of memory (scene " +
-                    gigabytes(geometry_bytes) + ", film " + gigabytes(film_bytes) + ") but only " +
+                    gigabytes(geometry_bytes) + ", film " + gigabytes(film_bytes) +
+                    (integrator_bytes > 0.0 ? ", integrator " + gigabytes(integrator_bytes) : std::string()) + ") but only " +
                     gigabytes(limit_bytes) + " are available (" + limit_source + ")";
-    if (biggest_mesh >= 0 && geometry_bytes >= film_bytes) {
+    if (integrator_bytes > geometry_bytes && integrator_bytes > film_bytes) {
+        s += "; most of it is the integrator's own data (" + gigabytes(integrator_bytes) +
+             "): lower its budget in its settings";
+    } else if (biggest_mesh >= 0 && geometry_bytes >= film_bytes) {
         const size_t m = size_t(biggest_mesh);
         const std::string name = m < mesh_names.size() ? mesh_names[m] : "mesh " + std::to_string(m);
         s += "; the biggest is " + name + " with " + thousands(biggest_mesh_triangles) + " triangles (" +

@@ -23,13 +23,14 @@ namespace candela {
 struct MemoryEstimate {
     double geometry_bytes = 0.0;  // meshes, BVH (peak while building), lights
     double film_bytes = 0.0;
+    double integrator_bytes = 0.0;  // the integrator's own data (IntegratorEntry::memory_bytes)
     double limit_bytes = 0.0;     // what may be allocated (0: unknown, nothing is refused)
     std::string limit_source;     // "memory_limit_mb" or "available memory (MemAvailable)"
     std::vector<double> mesh_bytes;           // per mesh, every instance included
     int64_t biggest_mesh = -1;
     size_t biggest_mesh_triangles = 0;
 
-    double total_bytes() const { return geometry_bytes + film_bytes; }
+    double total_bytes() const { return geometry_bytes + film_bytes + integrator_bytes; }
     bool fits() const { return limit_bytes <= 0.0 || total_bytes() <= limit_bytes; }
     /// Why the render does not fit, naming the biggest mesh (by mesh_names[i] if given, else "mesh i").
     std::string refusal(const std::vector<std::string>& mesh_names = {}) const;

@@ -62,9 +62,11 @@ Session::Session(SceneArrays arrays, Params params)
     m_film = std::make_unique<Film>(x1 - x0, y1 - y0, x0, y0, m_params.get<int>("tile_size", 32));
     m_aovs = std::make_unique<AovFilm>(*m_film, split_pass_list(m_params.get<std::string>("passes", "")));
     m_integrator = make_integrator(m_params);
-    m_counters.samples_total = m_integrator->samples_per_pixel();
+    const WorkBudget budget = m_integrator->budget();
+    m_counters.work_total = budget.total;
+    m_unit = budget.unit;
     for (const auto& key : m_params.unused_keys())
-        if (key != "threads") m_log.push_back("unknown render parameter '" + key + "' was ignored");
+        if (key != "threads") m_log.add("unknown render parameter '" + key + "' was ignored");
 }
 
 Session::~Session() {
@@ -95,10 +97,10 @@ void Session::run() {
             m_stats.scene = scene.stats();
             m_phase = SessionPhase::Rendering;
             m_render_start = t1;
-            if (scene.lights().empty() && is_black(scene.lights().background()))
-                m_log.push_back("the scene has no lights and a black world: the image is black");
         }
-        RenderContext ctx{m_cancel, m_counters, m_threads, m_aovs.get()};
+        if (scene.lights().empty() && is_black(scene.lights().background()))
+            m_log.add("the scene has no lights and a black world: the image is black");
+        RenderContext ctx{m_cancel, m_counters, m_threads, m_aovs.get(), &m_log};
         m_integrator->render(scene, *m_film, ctx);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
         std::lock_guard<std::mutex> lock(m_mutex);
@@ -122,7 +124,7 @@ void Session::run() {
     if (m_stats.render_seconds > 0)
         m_stats.samples_per_second = double(m_stats.paths) / m_stats.render_seconds;
     if (m_stats.nan_samples)
-        m_log.push_back(std::to_string(m_stats.nan_samples) + " non-finite or negative samples were dropped");
+        m_log.add(std::to_string(m_stats.nan_samples) + " non-finite or negative samples were dropped");
     m_finished = true;
     m_finished_cv.notify_all();
 }
@@ -144,9 +146,11 @@ SessionProgress Session::progress() const {
     std::lock_guard<std::mutex> lock(m_mutex);
     SessionProgress p;
     p.phase = m_phase;
-    p.samples_done = m_counters.samples_done;
-    p.samples_total = m_counters.samples_total;
-    p.fraction = p.samples_total > 0 ? double(p.samples_done) / p.samples_total : 0.0;
+    p.work_done = m_counters.work_done;
+    p.work_total = m_counters.work_total;
+    p.unit = m_unit;
+    p.stage = m_counters.stage.snapshot();
+    p.fraction = p.work_total > 0 ? double(p.work_done) / double(p.work_total) : 0.0;
     p.relative_error = m_counters.relative_error;
     p.stop_reason = StopReason(m_counters.stop_reason.load());
     if (m_phase == SessionPhase::Done) p.fraction = 1.0;
@@ -175,17 +179,9 @@ std::optional<std::string> Session::error() const {
     return m_error;
 }
 
-std::vector<std::string> Session::take_log() {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    std::vector<std::string> out;
-    out.swap(m_log);
-    return out;
-}
+std::vector<std::string> Session::take_log() { return m_log.take(); }
 
-void Session::add_log(std::string message) {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    m_log.push_back(std::move(message));
-}
+void Session::add_log(std::string message) { m_log.add(std::move(message)); }
 
 std::vector<std::pair<std::string, int>> Session::pass_names() {
     std::vector<std::pair<std::string, int>> names = {{"Combined", 4}, {"Noise", 1}};

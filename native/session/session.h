@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/message_log.h"
 #include "core/params.h"
 #include "film/aov_film.h"
 #include "film/film.h"
@@ -27,7 +28,9 @@ const char* phase_name(SessionPhase p);
 
 struct SessionProgress {
     SessionPhase phase = SessionPhase::Idle;
-    int samples_done = 0, samples_total = 0;
+    int64_t work_done = 0, work_total = 0;  // in the integrator's unit (WorkBudget)
+    std::string unit = "sample";
+    StageProgress::Snapshot stage;  // a named stage with its own progress (a pre-pass), or none
     double fraction = 0.0;
     double elapsed_s = 0.0;  // since start()
     double relative_error = -1.0;  // estimated relative RMSE of the image (< 0: not known yet)
@@ -91,7 +94,8 @@ private:
     bool m_started = false, m_finished = false;
     SessionPhase m_phase = SessionPhase::Idle;
     std::optional<std::string> m_error;
-    std::vector<std::string> m_log;
+    MessageLog m_log;
+    std::string m_unit;
     SessionStats m_stats;
     std::chrono::steady_clock::time_point m_start_time, m_render_start;
 };

@@ -207,7 +207,7 @@ void ViewportSession::process(Request& r) {
         m_status.scene_bytes = m_scene->stats().embree_bytes + m_scene->stats().shading_bytes;
         m_status.bvh_built = m_cache->built();
         m_status.bvh_reused = m_cache->reused();
-        if (empty) m_log.push_back("the scene has no lights and a black world: the image is black");
+        if (empty) m_log.add("the scene has no lights and a black world: the image is black");
     }
     if (!m_scene || !r.settings || !r.view) {
         std::lock_guard<std::mutex> lock(m_mutex);
@@ -256,21 +256,22 @@ void ViewportSession::render_view(const Params& settings, const Params& view, co
         const int y1 = std::clamp(int((int64_t(by1) * fh + height - 1) / height), y0 + 1, fh);
         m_scene->set_camera(p, camera_to_world);
         auto integrator = make_integrator(p);
+        const WorkBudget budget = integrator->budget();
         auto film = std::make_shared<Film>(x1 - x0, y1 - y0, x0, y0, p.get<int>("tile_size", 32));
         auto counters = std::make_shared<RenderCounters>();
-        counters->samples_total = integrator->samples_per_pixel();
+        counters->work_total = budget.total;
         {
             std::lock_guard<std::mutex> lock(m_mutex);
             if (cancel->cancelled()) return;
             m_rendering = Level{film, counters, fw, fh, x0, y0, d, ++m_level_ids, false, restart};
             m_status.phase = "rendering";
             m_status.pixel_size = d;
-            m_status.samples_total = last ? integrator->samples_per_pixel() : 1;
+            m_status.samples_total = last ? int(budget.total) : 1;
             m_status.film_bytes = size_t(double(film->width()) * film->height() * film_bytes_per_pixel());
         }
         // The render settings' thread count (Blender's Performance > Threads), else the session's.
         RenderContext ctx{*cancel, *counters, p.has("threads") ? resolve_thread_count(p.get<int>("threads", 0)) : m_threads,
-                          nullptr};
+                          nullptr, &m_log};
         integrator->render(*m_scene, *film, ctx);
         std::lock_guard<std::mutex> lock(m_mutex);
         if (cancel->cancelled() || restart != m_restarts) return;
@@ -286,7 +287,7 @@ void ViewportSession::render_view(const Params& settings, const Params& view, co
 
 uint64_t ViewportSession::image_version() const {
     std::lock_guard<std::mutex> lock(m_mutex);
-    const Level& level = m_rendering.film && m_rendering.counters->samples_done >= 1 ? m_rendering : m_shown;
+    const Level& level = m_rendering.film && m_rendering.counters->work_done >= 1 ? m_rendering : m_shown;
     if (!level.film) return 0;
     // A new level, or more tiles of the level's pass (each finished tile adds its paths).
     return (level.id << 40) | std::min<uint64_t>(level.counters->paths.load(), (uint64_t(1) << 40) - 1);
@@ -294,7 +295,7 @@ uint64_t ViewportSession::image_version() const {
 
 uint64_t ViewportSession::image_request() const {
     std::lock_guard<std::mutex> lock(m_mutex);
-    const Level& level = m_rendering.film && m_rendering.counters->samples_done >= 1 ? m_rendering : m_shown;
+    const Level& level = m_rendering.film && m_rendering.counters->work_done >= 1 ? m_rendering : m_shown;
     return level.film ? level.request : 0;
 }
 
@@ -303,7 +304,7 @@ bool ViewportSession::image(uint64_t since, ViewportImage* out) const {
     uint64_t version;
     {
         std::lock_guard<std::mutex> lock(m_mutex);
-        level = m_rendering.film && m_rendering.counters->samples_done >= 1 ? m_rendering : m_shown;
+        level = m_rendering.film && m_rendering.counters->work_done >= 1 ? m_rendering : m_shown;
         if (!level.film) return false;
         version = (level.id << 40) | std::min<uint64_t>(level.counters->paths.load(), (uint64_t(1) << 40) - 1);
     }
@@ -318,7 +319,7 @@ bool ViewportSession::image(uint64_t since, ViewportImage* out) const {
     out->width = level.film->width();
     out->height = level.film->height();
     out->pixel_size = level.pixel_size;
-    out->samples = level.counters->samples_done;
+    out->samples = int(level.counters->work_done.load());
     out->rgba = level.film->combined();
     return true;
 }
@@ -326,16 +327,11 @@ bool ViewportSession::image(uint64_t since, ViewportImage* out) const {
 ViewportStatus ViewportSession::status() const {
     std::lock_guard<std::mutex> lock(m_mutex);
     ViewportStatus s = m_status;
-    if (m_rendering.counters) s.samples_done = m_rendering.counters->samples_done;
+    if (m_rendering.counters) s.samples_done = int(m_rendering.counters->work_done.load());
     if (m_build_error) s.error = m_build_error;  // a scene that cannot be built outranks a render error
     return s;
 }
 
-std::vector<std::string> ViewportSession::take_log() {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    std::vector<std::string> out;
-    out.swap(m_log);
-    return out;
-}
+std::vector<std::string> ViewportSession::take_log() { return m_log.take(); }
 
 }  // namespace candela

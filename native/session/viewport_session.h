@@ -28,6 +28,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/message_log.h"
 #include "core/params.h"
 #include "core/transform.h"
 #include "film/film.h"
@@ -132,7 +133,7 @@ private:
     std::chrono::steady_clock::time_point m_restart_time;
     ViewportStatus m_status;
     std::optional<std::string> m_build_error;  // until the next update_scene
-    std::vector<std::string> m_log;
+    MessageLog m_log;  // the scene build's and the integrators' lines (ctx.log), drained by take_log
     std::thread m_worker;  // last: started after everything above exists
 };
 

@@ -24,8 +24,8 @@ Vec3 equirectangular_to_direction(float u, float v) {
 
 ShadingInputs ShadingInputs::world(const Vec3& d) {
     ShadingInputs in;
-    in.generated = in.object = in.incoming = d;
-    in.normal = in.normal_object = -d;
+    in.generated = in.object = in.incoming = in.position = d;
+    in.normal = in.normal_object = in.true_normal = -d;
     return in;
 }
 
@@ -85,7 +85,19 @@ Vec3 normal_map(const ShadingInputs& in, NormalMapSpace space, const Color& colo
     return is_black(result) ? in.normal : result;
 }
 
-Vec3 coord(const ShadingInputs& in, CoordKind kind) {
+Vec3 coord(const ShadingInputs& in, CoordKind kind, uint32_t offset) {
+    // Offsets 1, 2 (Bump's finite differences) move the position-derived coordinates; the normals and the view
+    // direction stay (as in Cycles' bump evaluation).
+    if (offset != 0) {
+        const int k = int(offset) - 1;
+        switch (kind) {
+            case CoordKind::Uv: return in.uv + in.duv[k];
+            case CoordKind::Generated: return in.generated + in.dgenerated[k];
+            case CoordKind::Object: return in.object + in.dobject[k];
+            case CoordKind::Position: return in.position + in.dp[k];
+            default: break;
+        }
+    }
     switch (kind) {
         case CoordKind::Uv: return in.uv;
         case CoordKind::Generated: return in.generated;
@@ -93,6 +105,22 @@ Vec3 coord(const ShadingInputs& in, CoordKind kind) {
         case CoordKind::Normal: return in.normal_object;
         case CoordKind::WorldNormal: return in.normal;
         case CoordKind::Incoming: return in.incoming;
+        case CoordKind::Position: return in.position;
+        case CoordKind::TrueNormal: return in.true_normal;
+        case CoordKind::Backfacing: return Vec3(in.backfacing ? 1.f : 0.f);
+        case CoordKind::Reflection: {
+            const Vec3 n = in.backfacing ? -in.normal : in.normal;
+            return n * (2.f * dot(n, in.incoming)) - in.incoming;
+        }
+        case CoordKind::ObjectLocation: return in.object_location;
+        case CoordKind::ObjectIndex: return Vec3(in.object_index);
+        case CoordKind::Tangent: {
+            // The direction around the texture space's Z axis, (−(g_y − ½), g_x − ½, 0), carried to world space as
+            // a normal (Cycles does), then projected into the shading plane.
+            const Vec3 around(-(in.generated.y - 0.5f), in.generated.x - 0.5f, 0.f);
+            const Vec3 t = safe_normalize(cross(in.normal_to_world.vector(around), in.normal));
+            return cross(in.normal, t);
+        }
     }
     return Vec3(0.f);
 }
@@ -117,6 +145,22 @@ Vec3 ShaderLibrary::ramp(uint32_t index, float fac, bool interpolate, bool alpha
     return c;
 }
 
+float ShaderLibrary::curve(uint32_t index, float f, int c) const {
+    const float* table = m_ramps.data() + size_t(index) * k_ramp_size * 4;
+    const float last = float(k_ramp_size - 1);
+    if (!std::isfinite(f)) f = 0.f;
+    if (f < 0.f) return table[c] + (table[c] - table[4 + c]) * (-f) * last;
+    if (f > 1.f) {
+        const float* t0 = table + 4 * (k_ramp_size - 1);
+        return t0[c] + (t0[c] - t0[c - 4]) * (f - 1.f) * last;
+    }
+    const float x = f * last;
+    const uint32_t i = std::min(uint32_t(x), k_ramp_size - 1);
+    const float t = x - float(i);
+    const float v = table[4 * i + c];
+    return t > 0.f ? (1.f - t) * v + t * table[4 * (i + 1) + c] : v;
+}
+
 void ShaderLibrary::evaluate(uint32_t p, const ShadingInputs& in, Vec3* regs) const {
     const uint32_t begin = m_program_start[p], n = m_program_start[p + 1] - begin;
     for (uint32_t r = 0; r < n; ++r) {
@@ -127,7 +171,7 @@ void ShaderLibrary::evaluate(uint32_t p, const ShadingInputs& in, Vec3* regs) co
         Vec3 out(0.f);
         switch (op.code) {
             case ShaderOpCode::Const: out = Vec3(m_consts[op.i[0]], m_consts[op.i[0] + 1], m_consts[op.i[0] + 2]); break;
-            case ShaderOpCode::Coord: out = coord(in, CoordKind(op.i[0])); break;
+            case ShaderOpCode::Coord: out = coord(in, CoordKind(op.i[0]), op.i[1]); break;
             case ShaderOpCode::Image:
             case ShaderOpCode::ImageAlpha: {
                 const Vec2 uv = project(ImageProjection(op.i[3]), a);
@@ -171,6 +215,7 @@ void ShaderLibrary::evaluate(uint32_t p, const ShadingInputs& in, Vec3* regs) co
                 out = vmax(a * k + Vec3(off), Vec3(0.f));
                 break;
             }
+            default: out = evaluate_node(op, regs, in); break;
         }
         // A non-finite value (overflowing math) must never reach a BSDF or the film.
         if (!is_finite(out)) out = Vec3(std::isfinite(out.x) ? out.x : 0.f, std::isfinite(out.y) ? out.y : 0.f,

@@ -14,6 +14,7 @@
 #include "core/transform.h"
 #include "core/vec.h"
 #include "texture/image_texture.h"
+#include "texture/sky_nishita.h"
 
 namespace candela {
 
@@ -21,7 +22,7 @@ class SceneArrays;
 
 enum class ShaderOpCode : uint32_t {
     Const,           // i0: offset of 3 floats in shader_consts
-    Coord,           // i0: CoordKind
+    Coord,           // i0: CoordKind, i1: 0 at the point, 1/2 at the point moved by ShadingInputs::dp[0]/[1] (Bump)
     Image,           // a: vector; i0: texture, i1: TexInterpolation, i2: TexExtension, i3: ImageProjection
     ImageAlpha,      // as Image, the alpha channel
     Mix,             // a: factor, b: A, c: B; i0: MixBlend, i1: clamp factor, i2: clamp result, i3: per-channel factor
@@ -36,14 +37,64 @@ enum class ShaderOpCode : uint32_t {
     NormalMap,       // a: colour, b: strength; i0: NormalMapSpace
     Invert,          // a: factor, b: colour
     BrightContrast,  // a: colour, b: bright, c: contrast
+    // Procedural textures (texture/procedural.h, texture/voronoi.h). "(x, y, z)" is one register's channels; a
+    // "register i_k" immediate names a further input register (shader_op_register_immediates()).
+    TexNoise,        // a: vector, b: (w, scale, detail), c: (roughness, distortion, -); i0: dimensions, i1: 0 fac, 1 colour
+    TexWhiteNoise,   // a: vector, b: (w, -, -); i0: dimensions, i1: 0 value, 1 colour
+    TexMusgrave,     // a: vector, b: (w, scale, detail), c: (dimension, lacunarity, offset); i0: register (gain);
+                     // i1: dimensions, i2: musgrave_types
+    TexVoronoi,      // a: vector, b: (w, scale, smoothness), c: (exponent, randomness, -); i0: dimensions,
+                     // i1: voronoi_features, i2: voronoi_metrics, i3: 0 distance, 1 colour, 2 position, 3 w, 4 radius
+    TexWave,         // a: vector, b: (scale, distortion, detail), c: (detail scale, detail roughness, phase);
+                     // i0: wave_types, i1: direction (X, Y, Z, diagonal/spherical), i2: wave_profiles
+    TexMagic,        // a: vector, b: (scale, distortion, -); i0: depth, i1: 0 colour, 1 fac
+    TexChecker,      // a: vector, b: colour 1, c: colour 2; i0: register (scale); i1: 0 colour, 1 fac
+    TexGradient,     // a: vector; i0: gradient_types
+    TexBrick,        // a: vector, b: colour 1, c: colour 2; i0: register (mortar colour), i1: register (scale,
+                     // mortar size, mortar smooth), i2: register (bias, brick width, row height); i3: offset of 5
+                     // constants (offset, offset frequency, squash, squash frequency, output: 0 colour, 1 fac)
+    // Input and converter nodes.
+    VectorMath,      // a, b, c vectors; i0: vector_math_ops, i1: 0 vector result, 1 value result
+    MapRange,        // a: value(s), b: from min, c: from max; i0: register (to min), i1: register (to max),
+                     // i2: register (steps); i3: map_range_types | clamp << 8
+    HueSaturation,   // a: colour, b: (hue, saturation, value), c: fac
+    LayerWeight,     // a: normal, b: blend; i0: 0 Fresnel, 1 Facing
+    Fresnel,         // a: normal, b: IOR
+    Bump,            // a, b, c: height at the point and at its two offsets; i0: register (strength, distance, -),
+                     // i1: register (normal), i2: invert
+    Attribute,       // i0: attribute slot (`corner_attributes`), i1: 0 colour/vector, 1 fac (mean of x, y, z), 2 alpha
+    Sky,             // a: direction; i0: offset of the model's precomputed state in shader_consts, i1: sky_models
+    Curves,          // a: fac, b: value(s); i0: ramp (the curves baked over [min x, max x]), i1: offset of (min x,
+                     // x range) in shader_consts, i2: 0 per channel (RGB/Vector Curves), 1 one value (Float Curve)
+    Blackbody,       // a: temperature (K) → colour of luminance 1
 };
+/// Bit k set: immediate i_k of the operation is a register it reads (validated like a, b, c).
+uint32_t shader_op_register_immediates(ShaderOpCode code);
 const std::vector<std::string>& shader_op_names();
 
 /// What a COORD operation reads. Surfaces: UV (u, v, 0) of the render UV map, GENERATED (Blender's texture
 /// space: the object-space position normalised by the mesh's texture-space box), OBJECT (object-space
-/// position), NORMAL (object-space shading normal), WORLD_NORMAL, INCOMING (toward the viewer). The world:
-/// GENERATED, OBJECT and INCOMING are the view direction, NORMAL/WORLD_NORMAL its opposite, UV is 0.
-enum class CoordKind : uint32_t { Uv, Generated, Object, Normal, WorldNormal, Incoming };
+/// position), NORMAL (object-space shading normal), WORLD_NORMAL, INCOMING (toward the viewer), POSITION (the
+/// world position, Blender's world axes and origin), TRUE_NORMAL (the geometric normal), BACKFACING (1 when the
+/// viewer sees the back, else 0), REFLECTION (the view direction mirrored about the normal on the viewer's
+/// side, world space), OBJECT_LOCATION (the object's origin in world space). NORMAL, WORLD_NORMAL and
+/// TRUE_NORMAL are on the winding side. The world: GENERATED, OBJECT, POSITION, REFLECTION and INCOMING are the
+/// view direction, the normals its opposite, UV and OBJECT_LOCATION 0.
+enum class CoordKind : uint32_t {
+    Uv, Generated, Object, Normal, WorldNormal, Incoming, Position, TrueNormal, Backfacing, Reflection, ObjectLocation,
+    ObjectIndex,  // the object's pass index (Object Info > Object Index)
+    Tangent       // Geometry > Tangent: the tangent around the object's Z axis of Generated space (Cycles' default)
+};
+// Procedural-texture enumerations by their Blender identifiers.
+const std::vector<std::string>& musgrave_type_names();
+const std::vector<std::string>& voronoi_feature_names();
+const std::vector<std::string>& voronoi_metric_names();
+const std::vector<std::string>& wave_type_names();
+const std::vector<std::string>& wave_profile_names();
+const std::vector<std::string>& gradient_type_names();
+const std::vector<std::string>& vector_math_op_names();
+const std::vector<std::string>& map_range_type_names();
+const std::vector<std::string>& sky_model_names();
 const std::vector<std::string>& coord_kind_names();
 
 enum class ImageProjection : uint32_t { Flat, Equirectangular, MirrorBall };
@@ -73,6 +124,19 @@ struct ShadingInputs {
     float tangent_sign = 1.f;
     bool has_tangent = false;
     Affine normal_to_world;  // object → world for normals (object-space normal maps)
+    bool backfacing = false;  // the viewer is on the back (against the winding normal): Cycles flips N there
+    Vec3 position{0.f};       // world position (Blender's origin, not camera-relative)
+    Vec3 true_normal{0.f, 0.f, 1.f};  // geometric normal, winding side
+    Vec3 object_location{0.f};        // the object's origin, world
+    float object_index = 0.f;         // its pass index
+    // Mesh attributes (Attribute, Color Attribute, UV Map with a named map): the hit triangle's corner values, 4
+    // floats per slot, and its barycentrics. Null: the mesh has none (the attributes read 0).
+    const float* attributes = nullptr;
+    uint32_t attribute_slots = 0;
+    float b1 = 0.f, b2 = 0.f;
+    // Bump's finite differences (set where the program has offset coordinates): two small world offsets in the
+    // tangent plane and what they change in the position-derived coordinates.
+    Vec3 dp[2], dobject[2], dgenerated[2], duv[2];
 
     /// The inputs of the world shader for view direction d.
     static ShadingInputs world(const Vec3& d);
@@ -105,6 +169,8 @@ public:
 
     size_t program_count() const { return m_program_start.empty() ? 0 : m_program_start.size() - 1; }
     uint32_t program_size(uint32_t p) const { return m_program_start[p + 1] - m_program_start[p]; }
+    /// True if program p reads coordinates at offset points (a Bump node): ShadingInputs::dp and friends.
+    bool uses_differentials(uint32_t p) const { return m_differentials[p] != 0; }
     /// True if register r of program p depends on the shading point (else it is the same everywhere).
     bool varying(uint32_t p, uint32_t r) const { return m_varying[m_program_start[p] + r] != 0; }
 
@@ -114,11 +180,19 @@ public:
     const std::vector<ImageTexture>& textures() const { return m_textures; }
     const ShaderOp& op(uint32_t p, uint32_t r) const { return m_ops[m_program_start[p] + r]; }
 
+    /// The sun disc of a Nishita Sky Texture in program p that reads the plain view direction: its direction and
+    /// angular radius (environment lights sample it as a strategy of its own). False if there is none.
+    bool sun_disc(uint32_t p, Vec3* direction, float* half_angle) const;
+
     /// Largest program size (the register file callers allocate).
     uint32_t max_program_size() const { return m_max_size; }
 
 private:
     Vec3 ramp(uint32_t index, float fac, bool interpolate, bool alpha) const;
+    /// Channel c of ramp `index` at f with Cycles' linear extrapolation past [0, 1] (curve tables).
+    float curve(uint32_t index, float f, int c) const;
+    /// The procedural textures and converter nodes (texture/node_ops.cpp).
+    Vec3 evaluate_node(const ShaderOp& op, const Vec3* regs, const ShadingInputs& in) const;
 
     TexturePools m_pools;
     std::vector<ImageTexture> m_textures;
@@ -127,6 +201,9 @@ private:
     std::vector<ShaderOp> m_ops;
     std::vector<uint32_t> m_program_start;
     std::vector<uint8_t> m_varying;
+    std::vector<uint8_t> m_differentials;  // per program
+    std::vector<NishitaSky> m_skies;       // the Nishita skies, tabulated at load
+    std::vector<int32_t> m_sky_of_op;      // per operation: index in m_skies, or −1 (empty without skies)
     uint32_t m_max_size = 0;
 };
 

@@ -78,6 +78,16 @@ def test_images_are_finite_and_agree_in_brightness(report):
     for name, e in rep["engines"].items():
         for s, img in e["images"].items():
             assert img["finite"], (name, s)
-    # 48x48 pixels at 40 spp: the image mean's relative standard error is below 1 % for both engines, so a 10 %
-    # disagreement means a unit or export error, not noise.
-    assert abs(rep["results"]["brightness_ratio"] - 1.0) < 0.10
+    # The tolerance from the renders' own noise. Candela estimates its image's relative RMSE per pixel (ε, from its
+    # two noise replicates); the image mean's relative standard error is then ε/√P over P pixels (pixels are
+    # independent). Cycles traces the same paths (path tracing, NEE + MIS, the same roulette at equal settings),
+    # so its error is taken as at most twice Candela's (a generous margin: docs/parity.md measures them equal within
+    # a few per cent). The ratio of the two means then has σ ≤ ε/√P·√(1 + 2²); the band is 5σ (two-sided false
+    # alarm 6e-7) plus the parity suite's 2 % for a real systematic difference.
+    can = rep["engines"]["CANDELA"]
+    eps = max(float((r.get("native_stats") or {}).get("relative_error") or 0.0)
+              for r in can["runs"] if r["samples"] == max(int(k) for k in can["images"]))
+    assert eps > 0.0, "Candela reported no noise estimate"
+    img = can["images"][str(max(int(k) for k in can["images"]))]
+    sigma = eps / (img["width"] * img["height"]) ** 0.5 * (1.0 + 2.0 ** 2) ** 0.5
+    assert abs(rep["results"]["brightness_ratio"] - 1.0) < 0.02 + 5.0 * sigma, (rep["results"]["brightness_ratio"], sigma)

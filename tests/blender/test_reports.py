@@ -46,17 +46,31 @@ def test_ignored_settings_are_named_once_per_render():
     layer.use_pass_mist = layer.use_pass_diffuse_color = layer.use_pass_emit = True
     add_linked_output(bpy.data.materials["Grey"], "Volume")
     add_linked_output(bpy.data.materials["Grey"], "Displacement")
+    bpy.data.materials["Grey"].cycles.displacement_method = 'BOTH'   # true displacement, which Candela does not do
     hair = bpy.data.objects["Plane"].modifiers.new("Hair", 'PARTICLE_SYSTEM')
     hair.particle_system.settings.type = 'HAIR'
     volume = scenes.link(scene, bpy.data.objects.new("Smoke", bpy.data.volumes.new("Smoke")))
     assert volume.type == 'VOLUME'
     warnings = warnings_of(render())
     expected = ["Motion Blur", "Material Override 'Grey'", "Mist pass", "Diffuse Color pass", "Emit pass",
-                "material 'Grey': the Volume output", "material 'Grey': the Displacement output",
+                "material 'Grey': the Volume output", "material 'Grey': the Displacement output's true displacement",
                 "hair particle system 'Hair'", "object 'Smoke' is a volume"]
     for text in expected:
         matching = [w for w in warnings if text in w]
         assert len(matching) == 1, (text, warnings)
+
+
+def test_bump_through_the_displacement_output_is_rendered_and_not_reported():
+    """Candela renders the Displacement output as bump mapping (Cycles' Bump Only, the default method): no warning;
+    only true displacement is reported, once."""
+    scenes.tiny_scene(width=16, height=12, samples=1)
+    material = bpy.data.materials["Grey"]
+    add_linked_output(material, "Displacement")
+    assert material.cycles.displacement_method == 'BUMP'
+    assert not [w for w in warnings_of(render()) if "isplacement" in w]
+    material.cycles.displacement_method = 'DISPLACEMENT'
+    reported = [w for w in warnings_of(render()) if "isplacement" in w]
+    assert len(reported) == 1 and "Displacement Only" in reported[0] and "bump mapping only" in reported[0], reported
 
 
 def test_a_plain_scene_has_no_such_warnings():

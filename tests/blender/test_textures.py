@@ -164,11 +164,11 @@ def test_unsupported_input_node_warns_once_and_keeps_the_socket_value(tmp_path):
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
     diffuse = nodes["Diffuse BSDF"]
     diffuse.inputs["Color"].default_value = (0.5, 0.5, 0.5, 1.0)
-    noise = nodes.new("ShaderNodeTexNoise")
-    links.new(noise.outputs["Color"], diffuse.inputs["Color"])
-    links.new(noise.outputs["Fac"], diffuse.inputs["Roughness"])
+    density = nodes.new("ShaderNodeTexPointDensity")   # a node Candela does not read
+    links.new(density.outputs["Color"], diffuse.inputs["Color"])
+    links.new(density.outputs["Density"], diffuse.inputs["Roughness"])
     a, warnings = export(scene)
-    noisy = [m for m in warnings if "Noise Texture" in m]
+    noisy = [m for m in warnings if "Point Density" in m]
     assert len(noisy) == 1 and "material 'Checker'" in noisy[0], warnings
     cols = schema.closure_columns()
     assert np.allclose(a["closure_params"][0, cols.index("color_r"):cols.index("color_r") + 3], 0.5)

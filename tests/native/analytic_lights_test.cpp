@@ -1,10 +1,10 @@
-// Per-pixel closed forms through the real path tracer (verification-cases.md §2 C, E, F, G, H and the §3 table):
+// Per-pixel closed forms through the real path tracer (docs/verification.md §2.2–§2.6 and the §3 table):
 // a white Lambertian receiver (ρ = 1) at the origin, facing +Z, under
 //   a disk light        radius 1 at height 1, L = 1:       Lo = ρ·L·a²/(a² + h²)                  = 0.5
 //   a square light      2 × 2 centred at height 1, L = 1:  Lo = ρ·L·4·F_corner(1, 1, 1)            = 0.554126
 //   a triangle light    (0,0,1) (1,0,1) (0,1,1), L = 1:    Lo = ρ·L·(Lambert's polygon formula)/π  = 0.096225
 //   a sphere light      radius 1 at distance 2, L = 1:     Lo = ρ·L·(r/d)²                         = 0.25
-// and an off-centre point light inside a diffuse sphere (§2C): R = 1, ρ = 0.5, I = 1 at (0, 0, 0.5), seen at
+// and an off-centre point light inside a diffuse sphere (§2.6): R = 1, ρ = 0.5, I = 1 at (0, 0, 0.5), seen at
 // (0, 0, 1): L = (ρ/π)·(I·cosθ/d² + ρI/((1 − ρ)R²)) = (0.5/π)(4 + 1) = 0.795775.
 // The disk and square are Blender area lights (radiance = power/(4·area)), the triangle and the sphere emissive
 // meshes (emission strength = radiance). The sphere light is a 64 × 32 UV sphere, so its exact value is
@@ -38,7 +38,7 @@ namespace candela::test {
 namespace {
 
 /// E/L at x (normal n) from a polygon of uniform radiance entirely above x's horizon (Lambert's formula,
-/// verification-cases.md §2 H): ½·|Σ βᵢ (n·uᵢ)|.
+/// docs/verification.md §2.4): ½·|Σ βᵢ (n·uᵢ)|.
 double polygon_irradiance(const std::vector<Vec3>& poly, Vec3 x, Vec3 n) {
     double sum = 0.0;
     for (size_t i = 0; i < poly.size(); ++i) {
@@ -155,7 +155,7 @@ void run_all(Case& c) {
 }
 
 TEST(AnalyticLights, PolygonFormulaReproducesTheTable) {
-    // The oracle itself against verification-cases.md §2 G/H.
+    // The oracle itself against docs/verification.md §2.3 and §2.4.
     const Vec3 x(0.f), n(0.f, 0.f, 1.f);
     EXPECT_NEAR(polygon_irradiance({{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}}, x, n), 1.740840, 1e-5);
     EXPECT_NEAR(polygon_irradiance({{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, x, n), 0.302300, 1e-5);
@@ -174,7 +174,7 @@ TEST(AnalyticLights, SquareLightOverDiffuseReceiver) {
     Case c = receiver_case("square");
     c.builder.add_area_light(Vec3(0.f, 0.f, 1.f), Vec3(2.f, 0.f, 0.f), Vec3(0.f, 2.f, 0.f), Vec3(0.f, 0.f, -1.f),
                              Color(16.f), false);
-    c.exact = 1.740840 / k_pi;  // E/L of §2 G over π
+    c.exact = 1.740840 / k_pi;  // E/L of docs/verification.md §2.3 over π
     run_all(c);
 }
 
@@ -188,7 +188,7 @@ TEST(AnalyticLights, TriangleLightOverDiffuseReceiver) {
 
 TEST(AnalyticLights, SphereLightOverDiffuseReceiver) {
     Case c = sphere_light_case("sphere");
-    // The inscribed mesh shows a slightly smaller silhouette than the sphere: E = π·L·(r/d)² minus ~0.4 %.
+    // The inscribed mesh shows a slightly smaller silhouette than the sphere: E = π·L·(r/d)² minus 0.23 %.
     EXPECT_NEAR(c.exact, 0.25, 0.0025);
     EXPECT_LT(c.exact, 0.25);
     c.light_sigma = 1.5;

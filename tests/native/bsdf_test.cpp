@@ -1,4 +1,4 @@
-// BSDF library tests: χ² of sample() against pdf() for every lobe (verification-cases.md §6), sample/eval
+// BSDF library tests: χ² of sample() against pdf() for every lobe (docs/verification.md §6), sample/eval
 // consistency, reciprocity, white furnaces, the η² asymmetry of refraction, and the closure mixture.
 // Every tolerance is statistical (stated n and σ) or floating-point rounding; the harness itself is
 // checked for power (it must reject a slightly wrong pdf).

@@ -1,4 +1,4 @@
-// Camera conventions of Cycles 3.4 (blender-conventions.md §8).
+// Camera conventions of Cycles 3.4 (docs/conventions.md §4).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Generic χ² goodness-of-fit test for direction samplers (pbrt-v3/v4 bsdfs_test, Mitsuba's chi2.py;
-// verification-cases.md §6): draw N directions, bin them over (cos θ, φ) on the full sphere, integrate
+// docs/verification.md §6.1): draw N directions, bin them over (cos θ, φ) on the full sphere, integrate
 // the claimed density over every cell, pool cells with small expected counts, and turn the χ² statistic
 // into a p-value with the regularised incomplete gamma function. Reusable for warps, BSDFs and lights:
 // the sampler and the pdf are std::functions.

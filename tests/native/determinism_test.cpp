@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "core/math.h"
+#include "integrators/integrator.h"
 #include "test_helpers.h"
 
 namespace candela::test {
@@ -17,8 +18,9 @@ SceneArrays lit_scene() {
     return b.arrays();
 }
 
-RenderResult render_with(int threads, int tile_size, int seed) {
+RenderResult render_with(int threads, int tile_size, int seed, const std::string& integrator = "PATH") {
     Params p = basic_params(40, 30, 12, 8);
+    p.set("integrator", integrator);
     p.set("threads", int64_t(threads));
     p.set("tile_size", int64_t(tile_size));
     p.set("seed", int64_t(seed));
@@ -36,6 +38,18 @@ TEST(Determinism, SameImageForOneAndTwoThreads) {
 TEST(Determinism, SameImageForAnyTileSize) {
     const RenderResult a = render_with(2, 8, 3), b = render_with(2, 64, 3);
     for (size_t i = 0; i < a.rgba.size(); ++i) ASSERT_EQ(a.rgba[i], b.rgba[i]) << "value " << i;
+}
+
+// Every integrator of the registry: 1 vs 4 threads and two tile sizes give the same image, bit for bit.
+TEST(Determinism, EveryIntegratorIsThreadCountAndTileOrderInvariant) {
+    for (const IntegratorEntry& e : integrator_registry()) {
+        const RenderResult a = render_with(1, 8, 5, e.name), b = render_with(4, 64, 5, e.name);
+        ASSERT_EQ(a.rgba.size(), b.rgba.size());
+        size_t differ = 0;
+        for (size_t i = 0; i < a.rgba.size(); ++i) differ += a.rgba[i] != b.rgba[i];
+        EXPECT_EQ(differ, 0u) << e.name;
+        for (size_t i = 0; i < a.noise.size(); ++i) ASSERT_EQ(a.noise[i], b.noise[i]) << e.name << " noise " << i;
+    }
 }
 
 TEST(Determinism, DifferentSeedsDiffer) {

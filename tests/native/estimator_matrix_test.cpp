@@ -1,5 +1,5 @@
-// Every unbiased configuration of the sampling toolbox converges to the analytic answer (verification-cases.md
-// §1, §2A, §7), as the cross product of its axes:
+// Every unbiased configuration of the sampling toolbox converges to the analytic answer (docs/verification.md
+// §1, §7), as the cross product of its axes:
 //   sampler (6) × light_sampling (3) × light_pdf (2) × light_selection (6) × rr_mode (THROUGHPUT, ALBEDO)
 // on two closed furnaces seen from inside (albedo 0.5, expected 1):
 //   EmissiveSphere: a coarse closed 8 × 4 UV sphere whose 48 facets all emit Le = 0.5 (L = Le/(1 − ρ)
@@ -10,10 +10,11 @@
 // plus branching_factor 4 × sampler × light_sampling × rr_mode, and hemisphere sampling × MIS heuristic at
 // branching factors 1 and 4. OFF roulette truncates (biased by design) and is not part of the matrix.
 //
-// Why a sphere and not the 12-triangle cube of §2A: seen from a point near a concave edge, area sampling of
-// the adjacent face has an unbounded geometry term (G ∝ sin²φ·ab/d⁴ for dihedral angle φ), so LIGHT_ONLY +
-// AREA has infinite variance there (see heavy_tailed below). The tail's constant scales with sin⁴ of the angle
-// between neighbouring facets: 1 for the cube, 0.25 for the 8 × 4 sphere; every other strategy is bounded.
+// Why a sphere and not the 12-triangle cube of docs/verification.md §1.4: seen from a point near a concave edge,
+// area sampling of the adjacent face has an unbounded geometry term (G ∝ sin²φ·ab/d⁴ for dihedral angle φ), so
+// LIGHT_ONLY + AREA has infinite variance there (see heavy_tailed below). The tail's constant scales with sin⁴ of
+// the angle between neighbouring facets: 1 for the cube, 0.25 for the 8 × 4 sphere; every other strategy is
+// bounded.
 //
 // Each scene is built once (PreparedScene) and rendered with every setting; every render gets its own seed
 // so that the renders are independent.

@@ -71,16 +71,19 @@ TEST(Film, CombinedAveragesSamplesAndAddsScaledSplats) {
     px[0].add(Color(3.f, 2.f, 1.f), 0.f, 1);
     px[3].add(Color(4.f), 1.f, 0);
     film.add_tile(0, px);
+    // A box filter of width 1: a splat at a pixel's centre lands in that pixel alone, with density 1.
+    const PixelFilter box("BOX", 1.f);
     SplatBuffer s;
-    s.entries.push_back({3, Color(2.f)});
-    film.add_splats({s});
-    film.set_splat_scale(0.5);
+    s.add({1.5f, 1.5f}, Color(2.f), 0);
+    const double samples[k_noise_replicates] = {1.0, 1.0};
+    film.add_splats(s, box, samples);
     const std::vector<float> c = film.combined();
     EXPECT_FLOAT_EQ(c[0], 2.f);
     EXPECT_FLOAT_EQ(c[2], 2.f);
     EXPECT_FLOAT_EQ(c[3], 0.5f);  // alpha averages too
-    EXPECT_FLOAT_EQ(c[12], 5.f);  // pixel 3: 4 + 0.5·2
+    EXPECT_FLOAT_EQ(c[12], 5.f);  // pixel 3: 4 + 2/2 (the splat over its two samples)
     EXPECT_FLOAT_EQ(c[4], 0.f);   // no samples yet
+    EXPECT_FLOAT_EQ(c[7], 1.f);   // ... but splats have reached the film: an opaque pixel
 }
 
 // Noise estimates (film/noise_estimate.h) on hand-computed pixels. Grey samples: luminance = value.

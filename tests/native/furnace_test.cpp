@@ -1,4 +1,4 @@
-// Closed-enclosure furnaces (verification-cases.md §1, §2A): the camera inside a closed diffuse sphere.
+// Closed-enclosure furnaces (docs/verification.md §1): the camera inside a closed diffuse sphere.
 // Tolerance 0.02 as in pbrt's analytic tests; each test also checks that the sample count makes the
 // statistical error small enough (4σ < 0.02) for that tolerance to mean something.
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // light_pdf = AREA / SOLID_ANGLE: spherical triangles (Arvo 1995), spherical rectangles (Ureña et al. 2013)
 // and the sphere cone sampler, checked against area sampling on pbrt-v4's configurations
-// (verification-cases.md §5), Lambert's polygon formula and other closed forms (§2 E–H), χ² of every
+// (docs/verification.md §5), Lambert's polygon formula and other closed forms (§2.2–§2.5), χ² of every
 // light-sampling routine seen from a fixed point, sample pdf == evaluated pdf, and degenerate inputs.
 #include <gtest/gtest.h>
 
@@ -26,7 +26,7 @@ using test::chi2_test;
 
 // ---- helpers ---------------------------------------------------------------------------------------------
 
-/// Lambert's formula: E/L of a convex polygon above the horizon of (x, n) (verification-cases.md §2H).
+/// Lambert's formula: E/L of a convex polygon above the horizon of (x, n) (docs/verification.md §2.4).
 double lambert_polygon(const std::vector<Vec3>& poly, const Vec3& x, const Vec3& n) {
     double sum = 0.0;
     for (size_t i = 0; i < poly.size(); ++i) {
@@ -212,7 +212,7 @@ TEST(SphericalRectangle, LambertTwoByTwoSquare) {
         std::printf("2x2 square %s: E/L = %.6f ± %.6f (exact %.6f)\n", light_pdf_mode_name(mode), e.mean, e.se, exact);
         EXPECT_NEAR(e.mean, exact, 5 * e.se + 1e-6);
     }
-    // Under a corner (verification-cases.md §2G): F = 0.138532 → E/L = πF.
+    // Under a corner (docs/verification.md §2.3): F = 0.138532 → E/L = πF.
     const Light corner = make_rect(Vec3(0.5f, 0.5f, 1), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, -1));
     const Estimate e = irradiance(corner, ctx, LightPdfMode::SolidAngle, 400000);
     EXPECT_NEAR(e.mean, M_PI * 0.138532, 5 * e.se + 1e-5);
@@ -239,7 +239,7 @@ TEST(SphericalTriangle, SolidAngleIsNoWorseThanArea) {
 }
 
 TEST(SphericalSphere, ConeMatchesClosedForms) {
-    // §2F: r = 1, d = 2, θ = 0 ⇒ E/L = π/4.
+    // docs/verification.md §2.5: r = 1, d = 2, θ = 0 ⇒ E/L = π/4.
     const Vec3 c(0, 0, 2);
     const LightSampleContext ctx{Vec3(0.f), Vec3(0, 0, 1)};
     auto est = [&](const Vec3& center, float r, const Vec3& p, const Vec3& n, int count) {

@@ -1,5 +1,5 @@
-// Blender light units (Cycles 3.4, blender-conventions.md §5–§6) and light sampling estimators checked
-// against closed forms (verification-cases.md §2).
+// Blender light units (Cycles 3.4, docs/conventions.md §2–§3) and light sampling estimators checked
+// against closed forms (docs/verification.md §2).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -60,7 +60,7 @@ TEST(BlenderLights, SpotLightHasCycles34CosineFactor) {
     r[17] = 0.f;                   // blend
     const auto lights = load_blender_lights(light_arrays(1, r), Vec3(0.f));
     const auto [E, se] = irradiance(lights[0], {Vec3(1.f, 0.f, 0.f), Vec3(0, 0, 1)}, 16);
-    EXPECT_NEAR(E / M_PI, 4.053, 2e-3);  // blender-conventions.md §6, "with extra cosθ"
+    EXPECT_NEAR(E / M_PI, 4.053, 2e-3);  // docs/conventions.md §3, the formula with the extra cosθ
 }
 
 TEST(BlenderLights, SunGivesItsStrengthAsIrradiance) {
@@ -141,7 +141,7 @@ TEST(BlenderLights, AreaLightMatchesTheViewFactor) {
     const double expected_E = M_PI * 25.0 * 4.0 * Fc;
     const auto [E, se] = irradiance(lights[0], {Vec3(0.f), Vec3(0, 0, 1)});
     EXPECT_NEAR(E, expected_E, 5 * se);
-    EXPECT_NEAR(expected_E / M_PI, 1.837, 0.01);  // the numeric value in blender-conventions.md §6
+    EXPECT_NEAR(expected_E / M_PI, 1.837, 0.01);  // the formula value in docs/conventions.md §3
 }
 
 TEST(BlenderLights, DiskAreaLightUsesEllipseArea) {
@@ -152,7 +152,7 @@ TEST(BlenderLights, DiskAreaLightUsesEllipseArea) {
     const auto lights = load_blender_lights(light_arrays(3, r), Vec3(0.f));
     const double L = 100.0 / (4.0 * M_PI);  // A = π/4·2·2 = π
     const auto [E, se] = irradiance(lights[0], {Vec3(0.f), Vec3(0, 0, 1)});
-    EXPECT_NEAR(E, M_PI * L * 0.5, 5 * se);  // verification-cases.md §2E: E = πL·a²/(a² + h²)
+    EXPECT_NEAR(E, M_PI * L * 0.5, 5 * se);  // docs/verification.md §2.2: E = πL·a²/(a² + h²)
 }
 
 TEST(BlenderLights, AreaLightIsOneSided) {
@@ -165,7 +165,7 @@ TEST(BlenderLights, AreaLightIsOneSided) {
 }
 
 TEST(TriangleLight, MatchesLambertsPolygonFormula) {
-    // Triangle (0,0,1), (1,0,1), (0,1,1) over the origin: E/L = 0.302300 (verification-cases.md §2H).
+    // Triangle (0,0,1), (1,0,1), (0,1,1) over the origin: E/L = 0.302300 (docs/verification.md §2.4).
     TriangleLight t;
     t.p0 = Vec3(0, 0, 1);
     t.p1 = Vec3(1, 0, 1);

@@ -1,6 +1,6 @@
 // Materials from the scene arrays: the fallback diffuse colour, the closure table (Cycles shader nodes with
 // their weights), front/back faces of dielectrics, clear errors; and end-to-end white furnaces through the
-// path tracer (verification-cases.md §2B: a convex object under a uniform world of radiance 1 vanishes when
+// path tracer (docs/verification.md §2.7: a convex object under a uniform world of radiance 1 vanishes when
 // its BSDF conserves energy).
 #include <gtest/gtest.h>
 

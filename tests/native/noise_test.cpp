@@ -138,7 +138,7 @@ FilmRender render_film(const SceneArrays& arrays, const Params& params) {
             r.moment_var.push_back(moment_variance_of_mean(p));
         }
     r.estimate = film.noise_estimate();
-    r.samples_done = counters.samples_done;
+    r.samples_done = int(counters.work_done);
     r.stop = StopReason(counters.stop_reason.load());
     return r;
 }

@@ -1,5 +1,5 @@
 // The closed-enclosure furnaces of furnace_test.cpp for every pixel sampler: whatever the sampler, the
-// estimate must converge to the analytic value (verification-cases.md §1, §2A). Deep paths (K = 40 bounces,
+// estimate must converge to the analytic value (docs/verification.md §1). Deep paths (K = 40 bounces,
 // 6 dimensions per bounce) also exercise the samplers' high-dimension fallbacks.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Pixel samplers: exact radical-inverse / Halton / Hammersley values (verification-cases.md §4), elementary
+// Pixel samplers: exact radical-inverse / Halton / Hammersley values (docs/verification.md §4.1–§4.4), elementary
 // intervals and strata, call-order independence, value range, decorrelation of pixels and dimensions.
 #include <gtest/gtest.h>
 

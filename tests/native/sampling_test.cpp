@@ -12,7 +12,7 @@
 namespace candela {
 namespace {
 
-// pbrt-v3 Distribution1D.Discrete (verification-cases.md §4): f = {0, 1, 0, 3}.
+// pbrt-v3 Distribution1D.Discrete (docs/verification.md §4.5): f = {0, 1, 0, 3}.
 TEST(Distribution1D, DiscreteMatchesPbrtTable) {
     const Distribution1D d({0.f, 1.f, 0.f, 3.f});
     float pmf, u;

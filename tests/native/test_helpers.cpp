@@ -208,7 +208,7 @@ RenderResult render(SceneArrays arrays, Params params) {
     r.width = s.width();
     r.height = s.height();
     summarize(r);
-    r.samples_done = s.progress().samples_done;
+    r.samples_done = int(s.progress().work_done);
     r.stop_reason = s.progress().stop_reason;
     r.relative_error = s.progress().relative_error;
     return r;
@@ -237,7 +237,7 @@ RenderResult PreparedScene::render(const Params& overrides) const {
     r.width = width;
     r.height = height;
     summarize(r);
-    r.samples_done = counters.samples_done;
+    r.samples_done = int(counters.work_done);
     r.stop_reason = StopReason(counters.stop_reason.load());
     r.relative_error = counters.relative_error;
     return r;

@@ -90,7 +90,7 @@ private:
     std::unique_ptr<Scene> m_scene;
 };
 
-/// The closed-sphere furnaces of verification-cases.md §1 and §2A, seen from the centre (camera at the origin
+/// The closed-sphere furnaces of docs/verification.md §1, seen from the centre (camera at the origin
 /// looking down −Z), albedo 0.5 everywhere:
 ///   EmissiveSphere: every facet emits Le = 0.5 → L = Le/(1 − ρ) = 1 (exact for any closed shape);
 ///   PointLight:     a point light of intensity π at the centre (pbrt S1) → L = ρI/(π(1 − ρ)) = 1;

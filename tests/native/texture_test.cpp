@@ -313,6 +313,23 @@ TEST(ShaderProgram, RandomProgramsStayFinite) {
                 case ShaderOpCode::Separate: imm = {pick(3), pick(3), 0, 0}; break;
                 case ShaderOpCode::Mapping: imm = {0, pick(2), 0, 0}; break;
                 case ShaderOpCode::NormalMap: imm[0] = pick(uint32_t(normal_map_space_names().size())); break;
+                // The procedural textures and converters (register immediates name earlier registers).
+                case ShaderOpCode::TexNoise:
+                case ShaderOpCode::TexWhiteNoise: imm = {1 + pick(4), pick(2), 0, 0}; break;
+                case ShaderOpCode::TexMusgrave: imm = {pick(r), 1 + pick(4), pick(uint32_t(musgrave_type_names().size())), 0}; break;
+                case ShaderOpCode::TexVoronoi:
+                    imm = {1 + pick(4), pick(uint32_t(voronoi_feature_names().size())),
+                           pick(uint32_t(voronoi_metric_names().size())), pick(5)};
+                    break;
+                case ShaderOpCode::TexWave: imm = {pick(2), pick(4), pick(3), 0}; break;
+                case ShaderOpCode::TexMagic: imm = {pick(11), pick(2), 0, 0}; break;
+                case ShaderOpCode::TexChecker: imm = {pick(r), pick(2), 0, 0}; break;
+                case ShaderOpCode::TexGradient: imm[0] = pick(uint32_t(gradient_type_names().size())); break;
+                case ShaderOpCode::TexBrick: imm = {pick(r), pick(r), pick(r), 0}; break;  // consts 0..4: ±1e30, 0, 0, 1e-30
+                case ShaderOpCode::VectorMath: imm = {pick(uint32_t(vector_math_op_names().size())), pick(2), 0, 0}; break;
+                case ShaderOpCode::MapRange: imm = {pick(r), pick(r), pick(r), pick(4) | (pick(2) << 8)}; break;
+                case ShaderOpCode::LayerWeight: imm[0] = pick(2); break;
+                case ShaderOpCode::Bump: imm = {pick(r), pick(r), pick(2), 0}; break;
                 default: break;
             }
             b.op(code, pick(r), pick(r), pick(r), imm);
@@ -322,6 +339,8 @@ TEST(ShaderProgram, RandomProgramsStayFinite) {
         ShadingInputs in = tilted_frame();
         in.uv = Vec3(extremes[pick(6)], extremes[pick(6)], 0.f);
         in.generated = in.object = Vec3(extremes[pick(6)], -1.f, 2.f);
+        in.dp[0] = Vec3(1e-3f, 0.f, 0.f);
+        in.dp[1] = Vec3(0.f, 1e-3f, 0.f);
         ShaderRegisters regs(lib->program_size(0));
         lib->evaluate(0, in, regs.data());
         for (uint32_t r = 0; r < lib->program_size(0); ++r)

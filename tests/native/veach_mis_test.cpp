@@ -1,5 +1,5 @@
-// Veach's multiple-importance-sampling scene (Veach 1997, ch. 9; Bitterli's conversion, verification-cases.md
-// §8.3): four glossy plates of increasing roughness (Beckmann α 0.01, 0.05, 0.1, 0.25; colour 0.3) reflect
+// Veach's multiple-importance-sampling scene (Veach 1997, ch. 9; Bitterli's conversion, docs/verification.md
+// §8.2): four glossy plates of increasing roughness (Beckmann α 0.01, 0.05, 0.1, 0.25; colour 0.3) reflect
 // four spherical lights of equal power and very different sizes (radii 0.9, 0.3, 0.1, 0.0333 as in Veach's
 // original, L·r² = 7.59909 as in Bitterli's). Direct lighting only (max_bounces 0), as in Veach's figure.
 // Light sampling is poor on the smooth plates (the light sample rarely falls in the narrow lobe), BSDF sampling

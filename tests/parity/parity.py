@@ -15,6 +15,10 @@ Exit status 1 when a check fails or a render failed.
 
 --quick (`make test`): small images, few samples, the scenes marked quick — a pipeline check and a coarse
 brightness check whose tolerance is wider only by the larger measured noise.
+
+--nodes: the per-node scenes instead (tests/parity/node_scenes.py: one texture or input node feeding an Emission
+shader): image mean within 1 % and each of 8 × 8 block means within 3 %, widened by the measured noise as above;
+with --docs, DOCS/parity_nodes.md and DOCS/parity/nodes/. `make test` runs `--nodes --quick` too.
 """
 
 import argparse
@@ -49,6 +53,9 @@ ALL_SCENES = ["point", "point_radius", "spot_blend", "sun_angle", "area_square",
 # origin at the light point).
 PENDING = set()
 QUICK_SCENES = [s for s in ALL_SCENES if s not in PENDING]
+# The per-node suite (--nodes): tolerances of issue 21.
+NODE_REL_IMAGE, NODE_REL_BLOCK, NODE_GRID = 0.01, 0.03, 8
+NODE_QUICK_SIZE, NODE_QUICK_SAMPLES = 48, 32
 
 
 def parse_args(argv=None):
@@ -63,12 +70,24 @@ def parse_args(argv=None):
     ap.add_argument("--scenes", default=None, help="comma-separated scene names (default: all, or the quick ones)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--reuse", action="store_true", help="re-analyse the renders of a previous run in OUT")
+    ap.add_argument("--nodes", action="store_true", help="the per-node scenes (tests/parity/node_scenes.py)")
     a = ap.parse_args(argv)
+    if a.nodes:
+        import node_scenes  # noqa: E402  (plain Python: the scene list, no bpy needed to read it)
+        a.size = a.size or (NODE_QUICK_SIZE if a.quick else FULL_SIZE)
+        a.samples = a.samples or (NODE_QUICK_SAMPLES if a.quick else 128)
+        a.full_list = False
+        a.scenes = a.scenes.split(",") if a.scenes else (
+            node_scenes.QUICK_NODE_SCENES if a.quick else list(node_scenes.NODE_SCENES))
+        a.out = Path(a.out or Path(a.build) / ("parity-nodes-quick" if a.quick else "parity-nodes"))
+        a.rel_image, a.rel_block, a.grid = NODE_REL_IMAGE, NODE_REL_BLOCK, NODE_GRID
+        return a
     a.size = a.size or (QUICK_SIZE if a.quick else FULL_SIZE)
     a.samples = a.samples or (QUICK_SAMPLES if a.quick else FULL_SAMPLES)
     a.full_list = not a.scenes and not a.quick
     a.scenes = a.scenes.split(",") if a.scenes else (QUICK_SCENES if a.quick else ALL_SCENES)
     a.out = Path(a.out or Path(a.build) / ("parity-quick" if a.quick else "parity"))
+    a.rel_image, a.rel_block, a.grid = ps.REL_IMAGE, ps.REL_BLOCK, ps.GRID
     return a
 
 
@@ -119,7 +138,7 @@ def _srgb(x):
     return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
 
 
-def picture(path, name, cycles, candela, result, dpi=100):
+def picture(path, name, cycles, candela, result, dpi=100, grid=ps.GRID):
     """Cycles | Candela | difference (luminance, (Candela − Cycles)/image mean, 3 × 3 pixel box average to calm
     the noise), with every block's Candela/Cycles luminance ratio written on it (red: a failed check)."""
     import matplotlib
@@ -140,7 +159,6 @@ def picture(path, name, cycles, candela, result, dpi=100):
         ax.set_title(title, fontsize=9)
     im = axes[2].imshow(smooth, origin="lower", cmap="RdBu_r", vmin=-0.2, vmax=0.2, interpolation="nearest")
     axes[2].set_title("(Candela − Cycles) / mean, ±20 %", fontsize=9)
-    grid = ps.GRID
     for block in result["blocks"]:
         r, c = int(block["region"][-2]), int(block["region"][-1])
         cy = lum(block["cycles"])
@@ -149,7 +167,7 @@ def picture(path, name, cycles, candela, result, dpi=100):
         text = "dark" if dark else f"{ratio:.3f}"
         x = (c + 0.5) * width / grid
         y = (grid - 1 - r + 0.5) * height / grid
-        axes[2].text(x, y, text, ha="center", va="center", fontsize=7,
+        axes[2].text(x, y, text, ha="center", va="center", fontsize=7 if grid <= 4 else 4,
                      color="red" if not block["pass"] else "black")
     for ax in axes:
         ax.set_xticks([])
@@ -185,7 +203,7 @@ def scene_row(name, result, seconds):
     img = result["image"]
     cy, ca = lum(img["cycles"]), lum(img["candela"])
     sigma = float(np.sqrt(np.sum((np.array([0.2126, 0.7152, 0.0722]) * np.array(img["sigma"])) ** 2)))
-    bright = [b for b in result["blocks"] if not all(b["dark"])]
+    bright = [b for b in result["blocks"] if not all(b["dark"]) and lum(b["cycles"]) > 0]
     worst = max(bright, key=lambda b: abs(lum(b["candela"]) / lum(b["cycles"]) - 1.0)) if bright else None
     worst_excess = max(max(r["excess"]) for r in result["regions"])
     failed = [f"{r['region']}:{ch}" for r in result["regions"] for ch, ok_e in zip(ps.CHANNELS, r["excess"])
@@ -208,9 +226,9 @@ def write_summary(a, meta, rows, details, started, docs_dir=None):
     cpu = machine()  # bench/accuracy.py's description: CPU model, cores, OS
     settings = meta["settings"]
     passed = sum(r["pass"] for r in rows)
-    md = ["# Parity with Cycles 3.4", "",
-          f"Generated by `make parity` (`tests/parity/parity.py{' --quick' if a.quick else ''}`); do not edit by "
-          "hand.", "",
+    flags = (" --nodes" if a.nodes else "") + (" --quick" if a.quick else "")
+    md = ["# Parity with Cycles 3.4" + (": one node at a time" if a.nodes else ""), "",
+          f"Generated by `make parity` (`tests/parity/parity.py{flags}`); do not edit by hand.", "",
           f"Rendered {meta.get('rendered', when)} in {meta.get('blender_seconds', 0) / 60:.0f} minutes, Blender "
           f"{meta['blender']}, {cpu}, {a.threads} render threads. **{passed} of {len(rows)} scenes pass.**", "",
           f"Each scene is rendered by Cycles (CPU) and by Candela with the same settings: {a.size} px wide, "
@@ -219,7 +237,8 @@ def write_summary(a, meta, rows, details, started, docs_dir=None):
           f"type, caustics on, {settings['filter'].lower()} pixel filter {settings['filter_width']:g} px wide, no "
           "denoising, no adaptive sampling, no clamping, no light tree (Cycles 3.4 has none; Candela selects "
           f"lights by `{settings['candela_light_selection']}`), Standard view transform.", "",
-          "Checks, per RGB channel: the image mean within 2 % and each of the 4 × 4 block means within 5 % of "
+          f"Checks, per RGB channel: the image mean within {a.rel_image:.0%} and each of the {a.grid} × {a.grid} "
+          f"block means within {a.rel_block:.0%} of "
           "Cycles', each widened by the measured noise: |Candela − Cycles| ≤ tol · max(Cycles, 5 % of the image "
           "mean) + t · σ, σ from the two independent renders per engine, t the Student-t quantile at 5·10⁻⁵ "
           "for the effective degrees of freedom. Blocks darker than 5 % of the image mean get that absolute "
@@ -240,14 +259,15 @@ def write_summary(a, meta, rows, details, started, docs_dir=None):
            "blocks are named by row (0 = top) and column; *render time* is both engines' four renders. "
            f"Noise-model self-check: the RMS of the half-vs-half z-scores over all regions is {zr:.2f} "
            "(1 for independent pixels).", ""]
-    notes = HERE / "notes.md"
+    notes = HERE / ("notes_nodes.md" if a.nodes else "notes.md")
     if notes.exists():
         md += [notes.read_text().rstrip(), ""]
-    img_dir = (docs_dir / "parity") if docs_dir else a.out
+    sub = "parity/nodes" if a.nodes else "parity"
+    img_dir = (docs_dir / sub) if docs_dir else a.out
     md += ["## Pictures", "", "Each: Cycles | Candela (one exposure for both) | (Candela − Cycles) / image mean, "
            "smoothed over 3 × 3 pixels, with each block's Candela/Cycles luminance ratio (red: a failed check).", ""]
     for r in rows:
-        rel = f"parity/{r['scene']}.png" if docs_dir else f"{r['scene']}.png"
+        rel = f"{sub}/{r['scene']}.png" if docs_dir else f"{r['scene']}.png"
         md += [f"### {r['scene']}", "", f"![{r['scene']}]({rel})", ""]
     md += [f"Rendering took {meta.get('blender_seconds', time.time() - started):.0f} s in all.", ""]
     text = "\n".join(md)
@@ -256,7 +276,7 @@ def write_summary(a, meta, rows, details, started, docs_dir=None):
                                                     "rows": rows, "details": details, "z_half_rms": zr},
                                                    indent=1))
     if docs_dir:
-        (docs_dir / "parity.md").write_text(text)
+        (docs_dir / ("parity_nodes.md" if a.nodes else "parity.md")).write_text(text)
     return img_dir
 
 
@@ -267,21 +287,23 @@ def main(argv=None):
     native = native_module(a.build)
     meta = render_all(a)
     docs_dir = Path(a.docs) if a.docs else None
+    sub = "parity/nodes" if a.nodes else "parity"
     if docs_dir:
-        (docs_dir / "parity").mkdir(parents=True, exist_ok=True)
+        (docs_dir / sub).mkdir(parents=True, exist_ok=True)
     rows, details = [], {}
     for entry in meta["scenes"]:
         name = entry["scene"]
         halves = {e: [native.read_exr(p) for p in entry["renders"][e]["exr"]] for e in ("CYCLES", "CANDELA")}
-        result = ps.compare(halves["CYCLES"], halves["CANDELA"])
+        result = ps.compare(halves["CYCLES"], halves["CANDELA"], grid=a.grid, rel_image=a.rel_image,
+                            rel_block=a.rel_block)
         seconds = sum(sum(entry["renders"][e]["seconds"]) for e in ("CYCLES", "CANDELA"))
         row = scene_row(name, result, seconds)
         rows.append(row)
         details[name] = result
         mean = {e: 0.5 * (h[0] + h[1]) for e, h in halves.items()}
-        picture(a.out / f"{name}.png", name, mean["CYCLES"], mean["CANDELA"], result)
+        picture(a.out / f"{name}.png", name, mean["CYCLES"], mean["CANDELA"], result, grid=a.grid)
         if docs_dir:
-            picture(docs_dir / "parity" / f"{name}.png", name, mean["CYCLES"], mean["CANDELA"], result)
+            picture(docs_dir / sub / f"{name}.png", name, mean["CYCLES"], mean["CANDELA"], result, grid=a.grid)
         print(f"{name:24s} ratio {row['ratio']:.4f} ± {row['sigma_ratio']:.4f}  worst block "
               f"{row['worst_block_ratio'] if row['worst_block_ratio'] is not None else float('nan'):.3f}  "
               f"worst check/allowed {row['worst_excess']:.2f}  {'pass' if row['pass'] else 'FAIL'}", flush=True)

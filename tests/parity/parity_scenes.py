@@ -8,7 +8,7 @@ Every scene is one entry of SCENES: a builder that returns the image aspect.
 The helpers of examples/scenes.py (materials, meshes, camera, world) and examples/cornell_box.py (the box, the
 shared render settings) are reused; only what they lack is defined here.
 
-Light scenes (blender-conventions.md §5/§6): a white diffuse plane (albedo 1) 2 m below the light, with a small
+Light scenes (docs/conventions.md §2 and §3): a white diffuse plane (albedo 1) 2 m below the light, with a small
 white box casting a shadow (so the light's size shows in the penumbra), seen by an orthographic camera looking
 straight down from 1.5 m — below the light, so the light itself is never in view and every pixel is the plane's
 (or the box's) outgoing radiance E/π plus interreflections.
@@ -20,6 +20,7 @@ import bpy
 from mathutils import Matrix
 
 import cornell_box as cb
+import node_scenes
 import scenes as ex   # examples/scenes.py
 
 WHITE = (1.0, 1.0, 1.0)
@@ -141,7 +142,7 @@ def _light_scene(make_light):
 
 def build_emissive_quad_over_plane(scene, **_):
     aspect = _plane_and_blocker(scene)
-    # A 1 × 1 m quad 2 m up, tilted 20°, strength 25 (≡ a 100 W 1 × 1 m area light, blender-conventions.md §6).
+    # A 1 × 1 m quad 2 m up, tilted 20°, strength 25 (≡ a 100 W 1 × 1 m area light, docs/conventions.md §2.5).
     ex.rectangle(scene, "Emitter", ex.emission("Emitter", (1.0, 0.9, 0.8), 25.0),
                  Matrix.Translation((-0.2, 0.1, LIGHT_HEIGHT)) @ Matrix.Rotation(math.radians(20.0), 4, "X")
                  @ Matrix.Diagonal((0.5, 0.5, 1.0, 1.0)))
@@ -150,7 +151,7 @@ def build_emissive_quad_over_plane(scene, **_):
 
 def build_cornell_area_light(scene, size=128, **_):
     """The example Cornell box with its emissive quad replaced by an area light of the same radiance and size:
-    P = 4·A·L (blender-conventions.md §5), pointing down."""
+    P = 4·A·L (docs/conventions.md §2.4), pointing down."""
     cb.build_cornell_box(scene, size=size, engine="CYCLES")
     quad = scene.objects["Light"]
     verts = [quad.matrix_world @ v.co for v in quad.data.vertices]
@@ -226,7 +227,7 @@ def build_environment_hdr(scene, out_dir=".", **kw):
 def _lights():
     h = LIGHT_HEIGHT
     return {
-        # 1000 W point light, as in the §6 table.
+        # 1000 W point light, as in the table of docs/conventions.md §3.
         "point": lambda s: light(s, "Point", "POINT", (0.0, 0.0, h), 1000.0, shadow_soft_size=0.0),
         "point_radius": lambda s: light(s, "Point", "POINT", (0.3, 0.2, h), 1000.0, shadow_soft_size=0.5),
         "spot_blend": lambda s: light(s, "Spot", "SPOT", (0.0, 0.2, h), 1000.0, rotation_deg=(12.0, 0.0, 0.0),
@@ -258,7 +259,10 @@ SCENES.update({
 # Not in the default list until Candela reads Environment Texture nodes (issue #3, h-textures): run it with
 # `--scenes environment_hdr`, then add it to parity.py's ALL_SCENES.
 EXTRA_SCENES = {"environment_hdr": build_environment_hdr}
-BY_NAME = {**SCENES, **EXTRA_SCENES}
+# Per-node scenes (tests/parity/node_scenes.py): run by `parity.py --nodes`.
+NODE_SCENES = {name: (lambda n: lambda scene, size=128, out_dir=".": node_scenes.build_node_scene(
+    n, scene, size=size, out_dir=out_dir))(name) for name in node_scenes.ALL_NODE_SCENES}
+BY_NAME = {**SCENES, **EXTRA_SCENES, **NODE_SCENES}
 
 
 def build(name, scene=None, size=128, threads=0, out_dir="."):

@@ -27,6 +27,10 @@ Check (per region — the whole image, or one of GRID × GRID blocks — and per
           REL·μ, and in the quick mode (small images, few samples) it is wider — by the measured noise, not by
           a guessed factor.
 
+  ROUNDING an absolute floor of ROUNDING · (the brightest channel's image mean) on every allowance: a channel that
+          is exactly 0 in Cycles (a plane's object-space z) and 10⁻⁸ in Candela (float rounding of a transform) has
+          no noise and no relative tolerance to absorb it.
+
 Self-check of the noise model: for every region and channel, z_half = Σ_p (a_p − b_p) / √(Σ_p (a_p − b_p)²) —
 the difference of the two halves over its own estimated standard deviation — is ~N(0, 1) when pixels are
 independent; the RMS of z_half over all regions is reported (≈ 1; clearly more would mean correlated pixels and a
@@ -43,6 +47,7 @@ REL_BLOCK = 0.05
 DARK = 0.05
 GRID = 4
 ALPHA = 5e-5
+ROUNDING = 1e-5
 CHANNELS = ("R", "G", "B")
 
 
@@ -169,7 +174,7 @@ def compare(cycles_halves, candela_halves, grid=GRID, rel_image=REL_IMAGE, rel_b
         t = np.array([t_quantile(alpha, n) if np.isfinite(n) else _normal_quantile(alpha) for n in nu])
         is_dark = cm < dark * image_mean
         scale = np.maximum(cm, dark * image_mean)
-        allowed = rel * scale + t * sigma
+        allowed = rel * scale + t * sigma + ROUNDING * float(np.max(image_mean))
         diff = nm - cm
         ok = np.abs(diff) <= allowed
         with np.errstate(divide="ignore", invalid="ignore"):

@@ -87,3 +87,16 @@ def test_noise_model_self_check_is_one_for_independent_pixels():
     truth = image()
     r = ps.compare(halves(rng, truth, 0.3), halves(rng, truth, 0.3))
     assert ps.z_rms(r["z_half"]) == pytest.approx(1.0, abs=0.25)
+
+
+def test_a_channel_that_is_zero_in_cycles_tolerates_float_rounding_only():
+    rng = np.random.default_rng(7)
+    base = rng.uniform(0.2, 0.8, (16, 16, 3))
+    base[..., 2] = 0.0
+    cycles = (base, base.copy())
+    close = base.copy()
+    close[..., 2] = 1e-8
+    assert ps.compare(cycles, (close, close.copy()))["pass"]
+    far = base.copy()
+    far[..., 2] = 1e-3
+    assert not ps.compare(cycles, (far, far.copy()))["pass"]

@@ -20,7 +20,12 @@ def render(native, arrays, prms):
 
 def test_capabilities_publish_layouts(native):
     caps = native.capabilities()
-    assert "PATH" in [name for name, _ in caps["integrators"]]
+    assert "PATH" in [entry[0] for entry in caps["integrators"]]
+    # Each integrator publishes its settings (key, label, type, default, range or items, group).
+    path = {spec["key"]: spec for spec in caps["integrator_params"]["PATH"]}
+    assert path["max_bounces"]["type"] == "INT" and path["max_bounces"]["min"] == 0
+    assert [item[0] for item in path["light_selection"]["items"]] == ["ALL", "UNIFORM", "AREA", "POWER", "TREE", "WARD"]
+    assert {spec["key"] for spec in caps["common_params"]} >= {"samples", "seed", "sampler", "noise_threshold"}
     assert caps["light_types"] == {"POINT": 0, "SPOT": 1, "SUN": 2, "AREA": 3}
     assert set(caps["pixel_filters"]) == {"BOX", "GAUSSIAN", "BLACKMAN_HARRIS"}
 

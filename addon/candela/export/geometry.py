@@ -103,6 +103,16 @@ class GeometryTable:
         if any(d.tangents is not None for d in datas):
             optional["tangents"] = np.concatenate(
                 [d.tangents if d.tangents is not None else np.zeros((len(d.triangles), 3, 4), np.float32) for d in datas])
+        names = self.materials.tables.attribute_names
+        if names and any(d.attributes for d in datas):
+            per_mesh = []
+            for d in datas:
+                block = np.zeros((len(d.triangles), 3, 4 * len(names)), np.float32)
+                for slot, name in enumerate(names):
+                    if d.attributes and name in d.attributes:
+                        block[..., 4 * slot:4 * slot + 4] = d.attributes[name]
+                per_mesh.append(block)
+            optional["corner_attributes"] = _joined(per_mesh, np.float32)
         if any(d.texspace is not None for d in datas):
             unit = np.array([0, 0, 0, 1, 1, 1], np.float32)
             optional["mesh_texspace"] = np.stack([d.texspace if d.texspace is not None else unit for d in datas])

@@ -1,6 +1,6 @@
 """Blender lights → rows of the `lights` table, in Blender's own quantities.
 
-The native side converts W and W/m² to radiometry with Cycles 3.4's rules (blender-conventions.md §5), so nothing
+The native side converts W and W/m² to radiometry with Cycles 3.4's rules (docs/conventions.md §2), so nothing
 here is unit conversion: strength = colour × energy (× the light's Emission node), geometry from the world matrix.
 """
 

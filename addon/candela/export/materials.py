@@ -50,6 +50,7 @@ class _Reader:
         self.material, self.warnings = material, warnings
         self.owner = f"material '{material.name}'"
         self.nodes = NodeCompiler(tables, self.owner, warnings)
+        self.nodes.material_index = getattr(material, "pass_index", 0)
         self.program = self.nodes.program
         self.closures, self.emission = [], (0.0, 0.0, 0.0)
         self.holdout = (0.0, 0.0, 0.0)   # Holdout closure weight, a constant or a register (Cycles: alpha loses it)
@@ -87,6 +88,21 @@ class _Reader:
                 self.normal, self._normal_from = n, (out.node.as_pointer(), out.identifier)
         elif self._normal_from != (out.node.as_pointer(), out.identifier):
             self.warn(f"the closures use different Normal inputs; '{node.name}' uses the first one found")
+
+    def displacement(self, output):
+        """The Displacement output as a bump normal (Cycles' "bump only"; true displacement is not supported)."""
+        socket = output.inputs.get("Displacement")
+        if socket is None or not socket.is_linked:
+            return
+        # True displacement (a method other than Bump Only) is rendered as bump too: unsupported.py says so, once
+        # per render with the settings Candela ignores.
+        normal = self.nodes.displacement_bump(socket)
+        if normal is None:
+            return
+        if self.normal is not None:
+            self.warn("the Displacement output and a BSDF's Normal input both set the normal; using the BSDF's")
+            return
+        self.normal = normal
 
     def distribution(self, node, supported=("GGX", "BECKMANN")):
         d = getattr(node, "distribution", "GGX")
@@ -184,6 +200,7 @@ def read_material(material, warnings, tables=None):
     tables = tables if tables is not None else ShaderTables(warnings)
     reader = _Reader(material, warnings, tables)
     reader.walk(surface, (1.0, 1.0, 1.0))
+    reader.displacement(output)
     program = tables.add_program(reader.program)
     # A material of pure emission (or all-black closures) must not fall back to the base colour: mark it black.
     return {"base": (0.0, 0.0, 0.0) if not reader.closures else base, "emission": reader.emission,

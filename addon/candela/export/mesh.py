@@ -31,6 +31,7 @@ class MeshData:
     tangents: np.ndarray = None  # (T, 3, 4) float32 UV tangent xyz + bitangent sign per corner (normal maps only)
     texspace: np.ndarray = None  # (6,) float32 texture-space location and size (Generated coordinates)
     vertex_normals: np.ndarray = None   # (V, 3) float32, when the split normals are the vertex normals
+    attributes: dict = None     # name → (T, 3, 4) float32 per-corner values of the attributes its materials read
 
     def corner_normals(self):
         """(T, 3, 3) per-corner normals whichever way they were read."""
@@ -98,6 +99,54 @@ def _render_uv_layer(me):
         if layer.active_render:
             return layer
     return layers.active
+
+
+def _attribute(me, name, loops, triangles, poly_of_tri):
+    """(T, 3, 4) per-corner values of mesh attribute `name`: a UV map (u, v, 0, 1), a colour attribute (linear
+    RGBA), a float (v, v, v, 1) or a vector attribute (x, y, z, 1), on any domain; 0 where the mesh has none (Cycles
+    reads a missing attribute as 0)."""
+    from .shader_nodes import RENDER_COLOR
+    n = len(loops)
+    out = np.zeros((n, 3, 4), np.float32)
+    nloops = len(me.loops)
+    if name == RENDER_COLOR:
+        colors = me.color_attributes
+        index = getattr(colors, "render_color_index", -1)
+        if not len(colors):
+            return out
+        name = colors[index].name if 0 <= index < len(colors) else colors[0].name
+    if name in me.uv_layers:
+        uv = _get(me.uv_layers[name].data, "uv", nloops, np.float32, 2)
+        out[..., :2] = np.take(uv, loops, axis=0)
+        out[..., 3] = 1.0
+        return out
+    attr = me.attributes.get(name)
+    if attr is None:
+        return out
+    count = len(attr.data)
+    if attr.data_type in ("FLOAT_COLOR", "BYTE_COLOR"):
+        values = _get(attr.data, "color", count, np.float32, 4)
+    elif attr.data_type in ("FLOAT_VECTOR", "FLOAT2"):
+        width = 3 if attr.data_type == "FLOAT_VECTOR" else 2
+        values = np.zeros((count, 4), np.float32)
+        values[:, :width] = _get(attr.data, "vector", count, np.float32, width)
+        values[:, 3] = 1.0
+    elif attr.data_type in ("FLOAT", "INT", "BOOLEAN", "INT8"):
+        prop = "value"
+        raw = _get(attr.data, prop, count, np.float32 if attr.data_type == "FLOAT" else
+                   (bool if attr.data_type == "BOOLEAN" else np.int32))
+        values = np.ones((count, 4), np.float32)
+        values[:, :3] = raw.astype(np.float32)[:, None]
+    else:
+        return out
+    values = np.nan_to_num(values, nan=0.0, posinf=0.0, neginf=0.0)
+    if attr.domain == "POINT":
+        out[:] = np.take(values, triangles.astype(np.int64), axis=0)
+    elif attr.domain == "CORNER":
+        out[:] = np.take(values, loops, axis=0)
+    elif attr.domain == "FACE":
+        out[:] = np.take(values, poly_of_tri, axis=0)[:, None, :]
+    return out
 
 
 def _tangents(me, ob, layer, loops, uvs, positions, triangles, warnings):
@@ -188,6 +237,9 @@ def read_mesh(ob, uses=frozenset(), warnings=None):
                 data.tangents = _tangents(me, ob, layer, loops, data.uvs, positions, triangles, warnings)
         if "GENERATED" in uses:
             data.texspace = np.array([*me.texspace_location, *me.texspace_size], np.float32)
+        names = [u[1] for u in uses if isinstance(u, tuple) and u[0] == "ATTRIBUTE"]
+        if names:
+            data.attributes = {name: _attribute(me, name, loops, triangles, poly_of_tri) for name in names}
         return data
     finally:
         if owned:

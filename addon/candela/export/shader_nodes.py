@@ -6,9 +6,11 @@ through reroutes, muted nodes (their internal pass-through) and node groups. Soc
 converts them: colour → value is Rec.709 luminance, vector → value the average of x, y, z, value → colour or vector
 a broadcast.
 
-Supported: Image Texture (flat projection), Environment Texture, Texture Coordinate (Generated, Normal, UV,
-Object), UV Map, Mapping, Normal Map, Mix (colour, float, vector), MixRGB, Math, ColorRamp, RGB, Value, Invert,
-Gamma, Bright/Contrast, RGB to BW, Separate/Combine Color, RGB, HSV and XYZ, Clamp. Any other node gives one
+Supported: Image Texture (flat projection), Environment Texture, the procedural textures (Noise, White Noise,
+Voronoi, Musgrave, Wave, Magic, Checker, Brick, Gradient: `procedural_nodes.py`), Texture Coordinate (Generated,
+Normal, UV, Object), UV Map, Mapping, Normal Map, Mix (colour, float, vector), MixRGB, Math, Vector Math, Map Range,
+ColorRamp, RGB, Value, Invert, Gamma, Bright/Contrast, Hue/Saturation, RGB to BW, Separate/Combine Color, RGB, HSV
+and XYZ, Clamp, Layer Weight, Fresnel. Any other node gives one
 warning per material naming it, and the socket it feeds keeps its own value (as if unlinked), never black by
 accident.
 """
@@ -16,10 +18,12 @@ accident.
 
 import mathutils
 
+from .procedural_nodes import ProceduralNodes
 from .shader_tables import MISSING_COLOR, Program, Reg, const3, is_const
 
 _INTERPOLATION = {"Closest": "CLOSEST", "Linear": "LINEAR", "Cubic": "CUBIC", "Smart": "CUBIC"}
 _PASS_THROUGH = {"NodeReroute"}
+RENDER_COLOR = "\x00render color"   # the Color Attribute node without a name: the mesh's default colour attribute
 
 
 def _socket_default(socket):
@@ -69,7 +73,7 @@ def resolve(socket, ctx):
         return out, socket, ctx
 
 
-class NodeCompiler:
+class NodeCompiler(ProceduralNodes):
     """Compiles the input sockets of one material (or the world) into one Program."""
 
     def __init__(self, tables, owner, warnings, world=False):
@@ -77,6 +81,8 @@ class NodeCompiler:
         self.program = Program(tables)
         self.uses = set()     # "UV", "TANGENT", "GENERATED": what the meshes must export
         self._memo = {}
+        self.offset = 0       # 1, 2 while compiling a Bump height at its offset points (COORD offsets)
+        self.material_index = 0   # the material's pass index (Object Info > Material Index)
 
     def warn(self, message):
         self.warnings.add(f"Candela: {self.owner}: {message}")
@@ -113,7 +119,7 @@ class NodeCompiler:
 
     def output(self, out, ctx):
         node = out.node
-        key = (node.as_pointer(), out.identifier, tuple(g.as_pointer() for g in ctx))
+        key = (node.as_pointer(), out.identifier, tuple(g.as_pointer() for g in ctx), self.offset)
         if key not in self._memo:
             handler = getattr(self, "_" + node.bl_idname, None)
             if handler is None:
@@ -126,9 +132,29 @@ class NodeCompiler:
     def coord(self, kind):
         if kind == "UV":
             self.uses.add("UV")
-        elif kind in ("GENERATED", "OBJECT") and not self.world:
+        elif kind in ("GENERATED", "OBJECT", "TANGENT") and not self.world:
             self.uses.add("GENERATED")
-        return self.program.op("COORD", i=(self.tables.enum("coord_kinds")[kind],))
+        moves = kind in ("UV", "GENERATED", "OBJECT", "POSITION")
+        return self.program.op("COORD", i=(self.tables.enum("coord_kinds")[kind], self.offset if moves else 0))
+
+    def at_offsets(self, compile_value):
+        """compile_value() at the shading point and at Bump's two offset points: three values."""
+        saved = self.offset
+        values = []
+        for offset in (0, 1, 2):
+            self.offset = offset
+            values.append(compile_value())
+        self.offset = saved
+        return values
+
+    def bump(self, heights, strength, distance, normal, invert=False):
+        """Cycles' Bump from heights at the point and its two offsets (BUMP); the normal itself if the height
+        does not vary."""
+        if all(is_const(h) for h in heights):
+            return normal
+        params = self.program.reg(self.pack(strength, distance))
+        normal = self.program.reg(normal)
+        return self.program.op("BUMP", *heights, i=(params.index, normal.index, int(invert)))
 
     # ---- textures -----------------------------------------------------------------------------------------------
 
@@ -162,21 +188,74 @@ class NodeCompiler:
         return self._image_lookup(node, out, ctx, projection, "GENERATED")
 
     def _ShaderNodeTexCoord(self, node, out, ctx):
-        if out.identifier == "Object" and getattr(node, "object", None) is not None:
-            self.unsupported(node, f"uses the space of another object ('{node.object.name}'), which is not "
-                                   "supported yet")
-            return None
-        kind = {"Generated": "GENERATED", "Normal": "NORMAL", "UV": "UV", "Object": "OBJECT"}.get(out.identifier)
+        if out.identifier == "Object" and getattr(node, "object", None) is not None and not self.world:
+            # Another object's space: its inverse world matrix applied to the world position.
+            return self.affine(node.object.matrix_world.inverted(), self.coord("POSITION"))
+        if out.identifier == "Camera" and not self.world:
+            camera = self.camera()
+            if camera is None:
+                self.unsupported(node, "output 'Camera' needs a scene camera")
+                return None
+            # Cycles' camera space looks down +Z (Blender's camera looks down −Z).
+            flip = mathutils.Matrix.Diagonal((1.0, 1.0, -1.0, 1.0))
+            return self.affine(flip @ camera.matrix_world.normalized().inverted(), self.coord("POSITION"))
+        kind = {"Generated": "GENERATED", "Normal": "NORMAL", "UV": "UV", "Object": "OBJECT",
+                "Reflection": "REFLECTION"}.get(out.identifier)
         if kind is None:
             self.unsupported(node, f"output '{out.name}' is not supported yet")
             return None
         return self.coord(kind)
 
+    def _ShaderNodeNewGeometry(self, node, out, ctx):
+        kind = {"Position": "POSITION", "Normal": "WORLD_NORMAL", "True Normal": "TRUE_NORMAL",
+                "Incoming": "INCOMING", "Backfacing": "BACKFACING", "Tangent": "TANGENT"}.get(out.identifier)
+        if kind is None:
+            self.unsupported(node, f"output '{out.name}' is not supported yet")
+            return None
+        return self.coord(kind)
+
+    def _ShaderNodeObjectInfo(self, node, out, ctx):
+        if self.world:
+            return (0.0, 0.0, 0.0)
+        if out.identifier == "Material Index":
+            return (float(self.material_index),) * 3
+        kind = {"Location": "OBJECT_LOCATION", "Object Index": "OBJECT_INDEX"}.get(out.identifier)
+        if kind is None:
+            self.unsupported(node, f"output '{out.name}' is not supported yet")
+            return None
+        return self.coord(kind)
+
+    def camera(self):
+        import bpy
+        return bpy.context.scene.camera
+
+    def affine(self, matrix, vector):
+        """A 4×4 matrix applied to a point (the MAPPING operation with its rows)."""
+        rows = [matrix[r][c] for r in range(3) for c in range(4)]
+        return self.program.op("MAPPING", vector, i=(self.tables.add_consts(rows), 0))
+
     def _ShaderNodeUVMap(self, node, out, ctx):
-        if node.uv_map:
-            self.warn(f"UV Map node '{node.name}' names the UV map '{node.uv_map}'; Candela uses the mesh's render UV "
-                      "map")
+        if node.uv_map and not self.world:
+            return self.attribute(node.uv_map, "Vector")
         return self.coord("UV")
+
+    def attribute(self, name, output):
+        """A mesh attribute (a colour attribute, a UV map, a float or vector attribute) by name, exported per corner
+        for the meshes whose materials read it; RENDER_COLOR is the mesh's default colour attribute."""
+        if self.world:
+            return (0.0, 0.0, 0.0)
+        self.uses.add(("ATTRIBUTE", name))
+        which = {"Fac": 1, "Alpha": 2}.get(output, 0)
+        return self.program.op("ATTRIBUTE", i=(self.tables.attribute_slot(name), which))
+
+    def _ShaderNodeAttribute(self, node, out, ctx):
+        if node.attribute_type != "GEOMETRY":
+            self.unsupported(node, f"reads a {node.attribute_type.lower()} attribute, which is not supported yet")
+            return None
+        return self.attribute(node.attribute_name, out.identifier)
+
+    def _ShaderNodeVertexColor(self, node, out, ctx):
+        return self.attribute(node.layer_name or RENDER_COLOR, out.identifier)
 
     def _ShaderNodeMapping(self, node, out, ctx):
         for name in ("Location", "Rotation", "Scale"):

@@ -125,6 +125,7 @@ class ShaderTables:
         self.ops = []
         self.program_start = [0]
         self.bindings = []           # [target, row, column, channels, program, register]
+        self.attribute_names = []    # slot → mesh attribute name (`corner_attributes`; RENDER_COLOR: the default)
 
     def enum(self, key):
         table = self._enums.get(key)
@@ -237,6 +238,19 @@ class ShaderTables:
         """Index of a ColorRamp baked into RAMP_SIZE entries at i/(RAMP_SIZE − 1), as Cycles bakes it."""
         n = schema.RAMP_SIZE
         table = np.array([tuple(color_ramp.evaluate(i / (n - 1))) for i in range(n)], np.float32).reshape(n, 4)
+        self.ramps.append(table)
+        return len(self.ramps) - 1
+
+    def attribute_slot(self, name):
+        """The `corner_attributes` slot of a mesh attribute name (shared by every material of the export)."""
+        if name not in self.attribute_names:
+            self.attribute_names.append(name)
+        return self.attribute_names.index(name)
+
+    def curve_table(self, rows):
+        """Index of a table of RAMP_SIZE given (r, g, b) rows (RGB/Vector/Float Curves baked over their x range)."""
+        table = np.ones((schema.RAMP_SIZE, 4), np.float32)
+        table[:, :3] = np.asarray(rows, np.float32).reshape(schema.RAMP_SIZE, 3)
         self.ramps.append(table)
         return len(self.ramps) - 1
 

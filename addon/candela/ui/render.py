@@ -1,7 +1,10 @@
-"""Render-tab panels: Sampling, Light Paths, Film."""
+"""Render-tab panels: Sampling, the chosen integrator's settings (sub-panels generated from the settings the native
+registry publishes: one per group, "Light Paths" and "Light Sampling" for PATH) after its Viewport sub-panel, Film,
+Simplify (after Sampling, as in Cycles)."""
 
 import bpy
 
+from .. import schema
 from .base import CandelaPanel
 
 
@@ -39,50 +42,6 @@ class CANDELA_RENDER_PT_sampling_viewport(CandelaPanel, bpy.types.Panel):
         col.prop(settings, "viewport_samples", text="Samples")
         col.prop(settings, "viewport_start_resolution")
         col.prop(context.scene.render, "preview_pixel_size", text="Pixel Size")
-
-
-class CANDELA_RENDER_PT_light_paths(CandelaPanel, bpy.types.Panel):
-    bl_context = "render"
-    bl_label = "Light Paths"
-    bl_options = {'DEFAULT_CLOSED'}
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.candela
-        col = layout.column()
-        col.prop(settings, "max_bounces")
-        col.prop(settings, "rr_mode")
-        sub = col.column()
-        sub.active = settings.rr_mode != 'OFF'
-        sub.prop(settings, "rr_start_bounce")
-        col.prop(settings, "branching_factor")
-        col.prop(settings, "hemisphere_sampling")
-        col.prop(settings, "clamp_indirect")
-
-
-class CANDELA_RENDER_PT_light_sampling(CandelaPanel, bpy.types.Panel):
-    bl_context = "render"
-    bl_label = "Light Sampling"
-    bl_options = {'DEFAULT_CLOSED'}
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.candela
-        col = layout.column()
-        col.prop(settings, "light_sampling")
-        sub = col.column()
-        sub.active = settings.light_sampling == 'MIS'
-        sub.prop(settings, "mis_heuristic")
-        col.prop(settings, "light_selection")
-        sub = col.column()
-        sub.active = settings.light_selection == 'WARD'
-        sub.prop(settings, "ward_threshold")
-        col.prop(settings, "light_pdf")
-        col.prop(settings, "light_samples")
 
 
 class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
@@ -127,5 +86,70 @@ class CANDELA_RENDER_PT_simplify(CandelaPanel, bpy.types.Panel):
         col.prop(rd, "simplify_child_particles_render", text="Child Particles")
 
 
-classes = (CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_sampling_viewport, CANDELA_RENDER_PT_light_paths, CANDELA_RENDER_PT_light_sampling,
-           CANDELA_RENDER_PT_film, CANDELA_RENDER_PT_simplify)
+def condition_holds(settings, condition):
+    """A published setting's `active_if`: "KEY==ID", "KEY!=ID" or "KEY>N" (empty: always)."""
+    if not condition:
+        return True
+    for op in ("==", "!=", ">"):
+        if op in condition:
+            key, value = condition.split(op, 1)
+            current = getattr(settings, key.strip(), None)
+            if op == "==":
+                return str(current) == value.strip()
+            if op == "!=":
+                return str(current) != value.strip()
+            return current is not None and float(current) > float(value)
+    return True
+
+
+def settings_groups(specs):
+    """[(group, [spec, ...]), ...] in the order the groups first appear."""
+    groups = []
+    for spec in specs:
+        group = spec.get("group") or ""
+        for name, members in groups:
+            if name == group:
+                members.append(spec)
+                break
+        else:
+            groups.append((group, [spec]))
+    return groups
+
+
+def make_settings_panel(integrator, label, index, group, specs):
+    """A sub-panel of Sampling drawing one group of an integrator's settings, shown while it is the chosen one."""
+    keys = tuple(spec["key"] for spec in specs)
+    conditions = {spec["key"]: spec.get("active_if", "") for spec in specs}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.candela
+        col = layout.column()
+        for key in keys:
+            if not hasattr(settings, key):
+                continue
+            row = col.row()
+            row.active = condition_holds(settings, conditions[key])
+            row.prop(settings, key)
+
+    def poll(cls, context):
+        return CandelaPanel.poll.__func__(cls, context) and context.scene.candela.integrator == integrator
+
+    return type(f"CANDELA_RENDER_PT_{integrator.lower()}_{index}", (CandelaPanel, bpy.types.Panel), {
+        "bl_context": "render", "bl_label": group or label, "bl_parent_id": "CANDELA_RENDER_PT_sampling",
+        "bl_options": {'DEFAULT_CLOSED'}, "draw": draw, "poll": classmethod(poll)})
+
+
+def settings_panels():
+    panels = []
+    labels = {name: label for name, _, label in schema.integrators()}
+    for integrator, specs in schema.integrator_params().items():
+        for index, (group, members) in enumerate(settings_groups(specs)):
+            panels.append(make_settings_panel(integrator, labels.get(integrator, integrator), index, group, members))
+    return tuple(panels)
+
+
+classes = ((CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_sampling_viewport) + settings_panels() +
+           (CANDELA_RENDER_PT_film, CANDELA_RENDER_PT_simplify))

@@ -18,6 +18,8 @@
 #pragma once
 
 #include "film/aov_film.h"
+#include "integrators/common/direct_light.h"
+#include "integrators/common/surface_vertex.h"
 #include "integrators/path/path_settings.h"
 #include "integrators/render_context.h"
 #include "lights/light_sampler.h"
@@ -41,13 +43,10 @@ public:
     /// How the ray being traced was produced: what the vertex it hits needs for MIS, roulette and dims.
     struct PathState {
         Color beta{1.f};         // throughput
-        float bsdf_pdf = 0.f;    // pdf of the continuation strategy that produced the ray
-        bool specular = true;    // camera ray or delta scatter: emission counts with weight 1
+        EmissionOrigin origin;   // the scattering that produced the ray, for MIS at an emitter it finds
         float eta_scale = 1.f;   // Π η² over refractions (roulette only)
         PrimitiveRef from;       // the triangle the ray leaves (skipped by the intersection)
-        LightSampleContext origin;  // the vertex the ray leaves, as light sampling saw it (for MIS)
         int dim_offset = 0;      // added to the bounce for sample dimensions (branches use their own)
-        int ward_tested = 0;     // WARD: how many candidates `origin` shadow-tested (its MIS realisation)
         AovSample* aov = nullptr;  // camera ray only: where its first hit's data passes go
     };
 
@@ -57,6 +56,16 @@ private:
     template <class ConcreteSampler>
     void trace(Ray ray, PathState state, int bounce, ConcreteSampler& sampler, PathStats& stats, Color& L,
                float* alpha, const TracedHit* first = nullptr) const;
+    /// The vertex at `hit`: roulette, next-event estimation and the continuation. Returns true with `ray` and
+    /// `state` set to the continuation's; false when the path ends here (or went on in branches).
+    template <class ConcreteSampler>
+    bool scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, PathState& state, int bounce,
+                 ConcreteSampler& sampler, PathStats& stats, Color& L, float* alpha) const;
+    /// Emission Le found by the path's ray (weighted against light sampling; indirect light may be clamped).
+    void add_emission(const PathState& state, int bounce, const Color& Le, float light_pdf, Color& L) const;
+    /// The light the ray finds before the surface at t_surface (area lights) or beyond it when it escapes.
+    void add_area_light_emission(const Ray& ray, float t_surface, int bounce, const PathState& state, Color& L) const;
+    void add_world_emission(const Ray& ray, int bounce, const PathState& state, Color& L, float* alpha) const;
 
     const Scene& m_scene;
     const PathSettings& m_settings;

@@ -1,0 +1,192 @@
+// The BSDF of a path vertex, in both directions of transport. A vertex's scattering is always the path tracer's:
+//     f(w_c, w_l)  =  the BSDF of w_c's side, in the shading frame of w_c (common/surface_vertex.h), radiance mode,
+//                     zero where w_l leaks through the surface,
+// with w_c the direction toward the camera side of the path and w_l the one toward the light side. Camera-rooted
+// sampling (the path tracer, BDPT's camera subpath) draws w_l from w_c with that BSDF's own sampling; light-rooted
+// sampling (light tracing, photons, BDPT's light subpath) draws w_c from w_l with the BSDF of w_l's side in the
+// shading frame of w_l, in importance mode (its density follows the adjoint BSDF), and then evaluates f(w_c, w_l)
+// by the rule above. Both directions therefore see one BSDF, which is what makes light tracing, BDPT and photon
+// mapping agree with PATH, shading normals included.
+//
+// Two details make the light side's sampling cover f's support. Where the shading normal is tilted against the
+// geometric one, f is non-zero for a thin band of w_c below the shading hemisphere of w_l (f uses the geometric
+// frame there): a share ε of the light side's samples is cosine-distributed about the geometric normal, and the
+// density is the mixture. A delta lobe's direction is kept only where the camera side would sample it back (both
+// directions choose the same frame).
+//
+// Adjoint shading normals (Veach 1997, §5.3): a light path's throughput over a vertex is multiplied by
+//     f(w_c, w_l) · |w_c·ng| · |w_l·n| / |w_l·ng|  /  p(w_c)
+// — the geometric cosine of the outgoing direction (it converts the next vertex's area to this one's solid angle)
+// and the ratio of the incoming direction's cosine about n, the normal of w_c's frame (the cosine the path
+// tracer's rendering equation takes at this vertex), over the geometric one the previous segment carried. With
+// ns = ng it is the usual f·|cos θ|/p.
+#pragma once
+
+#include <cmath>
+
+#include "bsdf/bsdf.h"
+#include "core/math.h"
+#include "integrators/common/surface_vertex.h"
+#include "sampling/warp.h"
+#include "scene/scene.h"
+
+namespace candela {
+
+class VertexBsdf {
+public:
+    /// The vertex at `hit`, shaded from direction w (the direction the path arrived along, reversed: toward where it
+    /// came from), whose shading point is `sp` (Scene::shade(hit, w)).
+    VertexBsdf(const Scene& scene, const SurfaceHit& hit, const Vec3& w, const ShadingPoint& sp)
+        : m_scene(scene), m_hit(hit) {
+        const int s = side(w);
+        m_sp[s] = sp;
+        m_shaded[s] = true;
+    }
+
+    const SurfaceHit& hit() const { return m_hit; }
+    /// The shading point of the side w arrives from (shaded on first use).
+    const ShadingPoint& shading(const Vec3& w) const {
+        const int s = side(w);
+        if (!m_shaded[s]) {
+            m_sp[s] = m_scene.shade(m_hit, w);
+            m_shaded[s] = true;
+        }
+        return m_sp[s];
+    }
+    bool has_non_delta(const Vec3& w) const { return shading(w).bsdf().has_non_delta(); }
+
+    /// f(w_c, w_l) of the rule above (non-delta lobes).
+    Color f(const Vec3& w_c, const Vec3& w_l) const {
+        const ShadingPoint& sp = shading(w_c);
+        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        const Vec3 l = v.frame.to_local(w_l);
+        if (leaks(dot(w_l, v.ng), l.z)) return Color(0.f);
+        return sp.bsdf().f(v.frame.to_local(w_c), l);
+    }
+    /// The density with which camera-side BSDF sampling from w_c produces w_l (0 where it leaks).
+    float pdf_camera(const Vec3& w_c, const Vec3& w_l) const {
+        const ShadingPoint& sp = shading(w_c);
+        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        const Vec3 l = v.frame.to_local(w_l);
+        if (leaks(dot(w_l, v.ng), l.z)) return 0.f;
+        return sp.bsdf().pdf(v.frame.to_local(w_c), l);
+    }
+    /// The density with which light-side sampling (sample_light) from w_l produces w_c (non-delta).
+    float pdf_light(const Vec3& w_l, const Vec3& w_c) const {
+        const ShadingPoint& sp = shading(w_l);
+        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_l);
+        const float eps = mixture_share(v, sp.bsdf());
+        const Vec3 c = v.frame.to_local(w_c);
+        float p = leaks(dot(w_c, v.ng), c.z) ? 0.f : sp.bsdf().pdf(v.frame.to_local(w_l), c, TransportMode::Importance);
+        if (eps > 0.f) p = (1.f - eps) * p + eps * geometric_cosine_pdf(v, sp.bsdf(), w_c);
+        return p;
+    }
+
+    struct Sample {
+        Vec3 w;           // the sampled direction (world)
+        Color weight{0.f};  // the throughput factor over the vertex: f·|w·ng|·(shading correction)/p
+        float pdf = 0.f;  // its density (the discrete probability for a delta lobe)
+        bool delta = false;
+        BsdfSample bsdf;  // the BSDF's own sample (flags, η)
+        bool valid() const { return pdf > 0.f && !is_black(weight); }
+    };
+
+    /// Light-side sampling: w_c drawn from w_l (u: the direction, u_lobe: the lobe, the mixture and a side).
+    Sample sample_light(const Vec3& w_l, Vec2 u, float u_lobe) const {
+        Sample out;
+        const ShadingPoint& sp = shading(w_l);
+        const Bsdf& bsdf = sp.bsdf();
+        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_l);
+        const float eps = mixture_share(v, bsdf);
+        if (u_lobe < eps) {  // the cosine share about ng (non-delta)
+            const float uc = u_lobe / eps;
+            const bool through = (bsdf.flags() & k_bsdf_transmission) && uc >= 0.5f;
+            Vec3 local = sample_cosine_hemisphere(u);
+            if (through) local.z = -local.z;
+            out.w = Frame(v.ng).to_world(local);
+            out.pdf = pdf_light(w_l, out.w);
+            if (!(out.pdf > 0.f)) return {};
+            out.weight = f(out.w, w_l) * (std::fabs(dot(out.w, v.ng)) * adjoint_factor(out.w, w_l) / out.pdf);
+            out.bsdf.flags = (through ? k_bsdf_transmission : k_bsdf_reflection) | k_bsdf_diffuse;
+            return out;
+        }
+        const float u_bsdf = eps > 0.f ? min_num((u_lobe - eps) / (1.f - eps), k_one_minus_epsilon) : u_lobe;
+        const Vec3 l = v.frame.to_local(w_l);
+        const BsdfSample bs = bsdf.sample(l, u, u_bsdf, TransportMode::Importance);
+        if (!bs.valid()) return {};
+        out.w = v.frame.to_world(bs.wi);
+        out.bsdf = bs;
+        if (leaks(dot(out.w, v.ng), bs.wi.z)) return {};
+        if (bs.is_delta()) {
+            // Kept only where the camera side would sample it back: both directions choose the same frame.
+            if (frame_is_shading(out.w) != frame_is_shading(w_l)) return {};
+            out.delta = true;
+            out.pdf = (1.f - eps) * bs.pdf;
+            out.weight = bs.f * (std::fabs(dot(out.w, v.ng)) * adjoint_factor(out.w, w_l) / out.pdf);
+            return out;
+        }
+        out.pdf = pdf_light(w_l, out.w);
+        if (!(out.pdf > 0.f)) return {};
+        out.weight = f(out.w, w_l) * (std::fabs(dot(out.w, v.ng)) * adjoint_factor(out.w, w_l) / out.pdf);
+        return out;
+    }
+
+    /// Camera-side sampling: w_l drawn from w_c by the BSDF of w_c's side in its frame, as the path tracer draws it;
+    /// weight f·|w_l·ns|/p (the shading cosine of the rendering equation).
+    Sample sample_camera(const Vec3& w_c, Vec2 u, float u_lobe) const {
+        Sample out;
+        const ShadingPoint& sp = shading(w_c);
+        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        const BsdfSample bs = sp.bsdf().sample(v.frame.to_local(w_c), u, u_lobe);
+        if (!bs.valid() || is_black(bs.f)) return {};
+        out.w = v.frame.to_world(bs.wi);
+        if (leaks(dot(out.w, v.ng), bs.wi.z)) return {};
+        out.bsdf = bs;
+        out.delta = bs.is_delta();
+        out.pdf = bs.pdf;
+        out.weight = bs.f * (std::fabs(bs.wi.z) / bs.pdf);
+        return out;
+    }
+    /// |w_l·ns| for the camera side's frame of w_c: the shading cosine a connection toward w_l carries at a camera
+    /// vertex.
+    float camera_cosine(const Vec3& w_c, const Vec3& w_l) const {
+        const ShadingPoint& sp = shading(w_c);
+        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        return std::fabs(dot(w_l, v.frame.n));
+    }
+
+    /// Veach's adjoint factor for the incoming direction: |w_l·n|/|w_l·ng|, n the normal of w_c's frame (the
+    /// cosine the rendering equation takes at this vertex, over the geometric one the previous segment carried);
+    /// 1 without shading normals.
+    float adjoint_factor(const Vec3& w_c, const Vec3& w_l) const {
+        const float g = std::fabs(dot(w_l, m_hit.ng));
+        return g > 0.f ? camera_cosine(w_c, w_l) / g : 0.f;
+    }
+
+private:
+    int side(const Vec3& w) const { return dot(w, m_hit.ng) < 0.f ? 1 : 0; }
+
+    /// Whether the frame of direction w (on its own side) is the shading one: w above its shading hemisphere.
+    bool frame_is_shading(const Vec3& w) const {
+        const ShadingPoint& sp = shading(w);
+        const Vec3 ns = dot(w, m_hit.ng) < 0.f ? -sp.ns : sp.ns;
+        return dot(w, ns) > 0.f;
+    }
+    /// ε: the share of light-side samples drawn about ng where the shading normal is tilted (see above).
+    static float mixture_share(const SurfaceVertex& v, const Bsdf& bsdf) {
+        return bsdf.has_non_delta() && dot(v.ns, v.ng) < 1.f - 1e-5f ? 0.1f : 0.f;
+    }
+    /// The cosine share's density: about ng on w_l's side (both sides, half each, for a transmitting BSDF).
+    static float geometric_cosine_pdf(const SurfaceVertex& v, const Bsdf& bsdf, const Vec3& w) {
+        const float c = dot(w, v.ng);
+        if (bsdf.flags() & k_bsdf_transmission) return 0.5f * std::fabs(c) * k_inv_pi;
+        return c > 0.f ? c * k_inv_pi : 0.f;
+    }
+
+    const Scene& m_scene;
+    const SurfaceHit& m_hit;
+    mutable ShadingPoint m_sp[2];
+    mutable bool m_shaded[2] = {false, false};
+};
+
+}  // namespace candela
