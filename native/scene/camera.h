@@ -71,7 +71,8 @@ public:
     /// [0, 1)², the sampler's Lens dimension) picks the point on the aperture; a pinhole camera ignores it.
     Ray generate_ray(Vec2 raster, Vec2 u_lens = {0.5f, 0.5f}) const;
     bool has_aperture() const { return !m_aperture.is_pinhole(); }
-    /// Panoramic projection (no viewplane).
+    /// Panoramic projection (no viewplane): integrators that connect vertices to the camera must refuse it or
+    /// project through panorama_direction's inverse.
     bool is_panoramic() const { return m_pano != Panorama::None; }
     enum class Panorama { None, Equirectangular, FisheyeEquidistant, FisheyeEquisolid };
     Panorama panorama() const { return m_pano; }
@@ -97,11 +98,24 @@ public:
 
     // ---- Importance (scene/camera_importance.cpp) ----------------------------------------------------------
     bool orthographic() const { return m_ortho; }
-    /// False only for a pinhole orthographic camera: its rays have one direction (a delta), so no strategy that
-    /// connects a scene point to the camera, or hits the camera, can reach it.
-    bool connectable() const { return !m_ortho || has_aperture(); }
-    /// "" if connectable(), else k_not_connectable_message (for the integrator's error or log line).
-    std::string not_connectable_message() const { return connectable() ? std::string() : k_not_connectable_message; }
+    /// False for a pinhole orthographic camera (its rays have one direction, a delta, so no strategy that connects
+    /// a scene point to the camera, or hits the camera, can reach it) and for a panoramic camera (connect,
+    /// raster_of and pdf_we invert the viewplane projection, which a panorama does not have: its t = 1 strategies
+    /// are not implemented).
+    bool connectable() const { return !is_panoramic() && (!m_ortho || has_aperture()); }
+    /// "" if connectable(), else what the integrator reports, naming the camera type: k_not_connectable_message for
+    /// the orthographic pinhole, panoramic_not_connectable_message for a panorama.
+    std::string not_connectable_message() const;
+    /// The camera a light-rooted strategy cannot reach, for messages: "the orthographic camera without depth of
+    /// field" or "the panoramic camera (Fisheye Equisolid)"; "" if connectable().
+    std::string not_connectable_kind() const;
+    /// The message for a panoramic camera of panorama_type `type` (EQUIRECTANGULAR, FISHEYE_EQUIDISTANT, ...), so
+    /// an integrator can refuse it from its params before the scene is built ("integrator X: " + this).
+    static std::string panoramic_not_connectable_message(const std::string& type);
+    /// The panorama's panorama_type ("FISHEYE_EQUISOLID"); "" if not panoramic.
+    std::string panorama_type_name() const;
+    /// Blender's label of a panorama_type ("FISHEYE_EQUISOLID" → "Fisheye Equisolid").
+    static std::string panorama_label(const std::string& type);
     /// A pinhole perspective camera: every ray starts at position() (CameraConnection::delta_pos).
     bool delta_position() const { return !m_ortho && !has_aperture(); }
     /// Samples the lens point with u_lens (the same warp generate_ray uses) and returns the connection to world
