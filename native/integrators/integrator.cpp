@@ -13,15 +13,17 @@ namespace candela {
 const std::vector<IntegratorEntry>& integrator_registry() {
     static const std::vector<IntegratorEntry> registry = {
         {"PATH", "Path Tracing", "Path tracing with next-event estimation and multiple importance sampling",
-         &make_path_integrator, &PathSettings::specs},
+         &make_path_integrator, &PathSettings::specs, nullptr, /*viewport=*/true},
         {"LIGHT", "Light Tracing",
          "Particle tracing from the lights, every vertex connected to the camera (emitters seen directly or through "
          "mirrors and glass by a camera pass; surfaces seen only through them stay dark: use BDPT)",
-         &make_light_integrator, &LightSettings::specs, &light_integrator_memory},
+         &make_light_integrator, &LightSettings::specs, &light_integrator_memory, /*viewport=*/true,
+         /*needs_camera_connection=*/true, /*panoramic=*/false},
         {"BDPT", "Bidirectional",
          "Bidirectional path tracing: camera and light subpaths joined by every (s, t) strategy, weighted by multiple "
          "importance sampling (Veach 1997, ch. 10)",
-         &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory},
+         &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory, /*viewport=*/true,
+         /*needs_camera_connection=*/false, /*panoramic=*/false},
     };
     return registry;
 }

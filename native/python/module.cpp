@@ -146,11 +146,15 @@ py::dict capabilities() {
     py::dict d;
     py::list integrators;
     py::dict integrator_params;
+    py::list viewport_integrators;
     for (const auto& e : integrator_registry()) {
         integrators.append(py::make_tuple(e.name, e.description, e.label));
         integrator_params[py::str(e.name)] = spec_list(e.specs());
+        if (e.viewport) viewport_integrators.append(e.name);
     }
     d["integrators"] = integrators;
+    // The integrators the 3D viewport renders with (IntegratorEntry::viewport); it shows the others with PATH.
+    d["viewport_integrators"] = viewport_integrators;
     d["integrator_params"] = integrator_params;
     d["common_params"] = spec_list(common_param_specs());
     d["target_arch"] = CANDELA_TARGET_ARCH;
@@ -280,6 +284,7 @@ py::dict viewport_status(const ViewportSession& s) {
     d["bvh_built"] = st.bvh_built;
     d["bvh_reused"] = st.bvh_reused;
     d["error"] = st.error ? py::object(py::str(*st.error)) : py::none();
+    d["note"] = st.note;
     return d;
 }
 

@@ -39,6 +39,21 @@ int start_divider(int width, int height, int pixel_size, int start_resolution) {
 
 int ceil_div(int a, int b) { return (a + b - 1) / b; }
 
+/// Puts into `p` the integrator the viewport renders with: the chosen one if it renders in the viewport
+/// (IntegratorEntry::viewport) and through this camera, else PATH. Returns the header's note for a fallback, "" if
+/// there is none.
+std::string choose_viewport_integrator(Params& p, const Camera& camera) {
+    const IntegratorEntry& chosen = find_integrator(p.get<std::string>("integrator", "PATH"));
+    std::string why;
+    if (!chosen.viewport)
+        why = " does not render progressively";
+    else if ((camera.is_panoramic() && !chosen.panoramic) || (chosen.needs_camera_connection && !camera.connectable()))
+        why = " cannot see through " + camera.not_connectable_kind();
+    if (why.empty()) return std::string();
+    p.set("integrator", std::string("PATH"));
+    return std::string(chosen.label) + why + ": the viewport shows Path Tracing";
+}
+
 }  // namespace
 
 struct ViewportSession::Request {
@@ -255,6 +270,7 @@ void ViewportSession::render_view(const Params& settings, const Params& view, co
         const int x1 = std::clamp(int((int64_t(bx1) * fw + width - 1) / width), x0 + 1, fw);
         const int y1 = std::clamp(int((int64_t(by1) * fh + height - 1) / height), y0 + 1, fh);
         m_scene->set_camera(p, camera_to_world);
+        const std::string note = choose_viewport_integrator(p, m_scene->camera());
         auto integrator = make_integrator(p);
         const WorkBudget budget = integrator->budget();
         auto film = std::make_shared<Film>(x1 - x0, y1 - y0, x0, y0, p.get<int>("tile_size", 32));
@@ -267,6 +283,7 @@ void ViewportSession::render_view(const Params& settings, const Params& view, co
             m_status.phase = "rendering";
             m_status.pixel_size = d;
             m_status.samples_total = last ? int(budget.total) : 1;
+            m_status.note = note;
             m_status.film_bytes = size_t(double(film->width()) * film->height() * film_bytes_per_pixel());
         }
         // The render settings' thread count (Blender's Performance > Threads), else the session's.

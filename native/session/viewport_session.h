@@ -59,6 +59,7 @@ struct ViewportStatus {
     double seconds_to_first_image = -1.0;  // from the latest restart to its first image (< 0: none yet)
     size_t scene_bytes = 0, film_bytes = 0;
     size_t bvh_built = 0, bvh_reused = 0;  // mesh BVHs built / taken from the cache, over the session
+    std::string note;            // the viewport renders with PATH instead of the chosen integrator, and why ("": not)
     std::optional<std::string> error;
 };
 

@@ -49,9 +49,17 @@ def test_integrators_without_progressive_rendering_fall_back_to_path(monkeypatch
     assert settings["time_limit"] == 0.0 and settings["noise_threshold"] == 0.0 and "passes" not in settings
     scene.candela.viewport_samples = 0
     assert viewport_settings(scene, bpy.context.view_layer)[0]["samples"] == render.UNLIMITED_SAMPLES
-    monkeypatch.setattr(render, "VIEWPORT_INTEGRATORS", ("SOMETHING_PROGRESSIVE",))   # PATH as if it were not
+    from candela import schema
+    assert {"PATH", "LIGHT", "BDPT"} <= set(schema.viewport_integrators())   # the registry's viewport flag
+    scene.candela.integrator = "LIGHT"
     settings, notes = viewport_settings(scene, bpy.context.view_layer)
-    assert settings["integrator"] == "PATH" and "does not render progressively" in notes[0]
+    assert settings["integrator"] == "LIGHT" and notes == []
+    assert "light_selection" in settings   # PATH's settings as well, for the native fallback through the view's camera
+    monkeypatch.setattr(schema, "viewport_integrators", lambda: ("PATH",))   # LIGHT as if it were not progressive
+    scene.candela.max_bounces = 3
+    settings, notes = viewport_settings(scene, bpy.context.view_layer)
+    assert settings["integrator"] == "PATH" and "Light Tracing does not render progressively" in notes[0]
+    assert settings["max_bounces"] == 3 and "branching_factor" in settings   # PATH's own settings, not LIGHT's
 
 
 def wait_done(session, timeout=60.0):

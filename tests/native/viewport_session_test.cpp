@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <thread>
 
 #include "core/error.h"
@@ -203,6 +204,51 @@ TEST(ViewportSession, ErrorsAreReportedAndClearedByTheNextScene) {
     st = wait_done(vs);
     EXPECT_FALSE(st.error);
     EXPECT_EQ(st.phase, "done");
+}
+
+TEST(ViewportSession, RendersWithTheChosenIntegratorWhereItCanElsePathWithANote) {
+    // The registry's viewport flags (integrators/integrator.h): LIGHT and BDPT render progressively, so the
+    // viewport uses them; through a camera their t = 1 connections cannot reach (an orthographic pinhole for
+    // LIGHT, a panorama for both) it renders with PATH and says so in the status note, without an error.
+    const MeshBuilder b = two_objects();
+    struct Case {
+        const char* integrator;
+        const char* camera_type;
+        const char* note;  // "" : no fallback
+    };
+    const Case cases[] = {
+        {"PATH", "PANO", ""},
+        {"LIGHT", "PERSP", ""},
+        {"BDPT", "ORTHO", ""},  // BDPT renders an orthographic pinhole without its t = 1 strategies
+        {"LIGHT", "ORTHO", "Light Tracing cannot see through the orthographic camera without depth of field"},
+        {"LIGHT", "PANO", "Light Tracing cannot see through the panoramic camera (Equirectangular)"},
+        {"BDPT", "PANO", "Bidirectional cannot see through the panoramic camera (Equirectangular)"},
+    };
+    for (const Case& c : cases) {
+        const std::string what = std::string(c.integrator) + " " + c.camera_type;
+        Params settings = test::basic_params(16, 12, 2, 3);
+        settings.set("integrator", std::string(c.integrator));
+        ViewportSession vs(2);
+        vs.update_scene(b.arrays(), settings);
+        Params view = view_params(16, 12);
+        view.set("camera_type", std::string(c.camera_type));
+        if (std::string(c.camera_type) == "PANO") view.set("panorama_type", std::string("EQUIRECTANGULAR"));
+        vs.set_view(view, Affine());
+        const ViewportStatus st = wait_done(vs);
+        ASSERT_FALSE(st.error) << what << ": " << *st.error;
+        EXPECT_EQ(st.phase, "done") << what;
+        if (*c.note) {
+            EXPECT_NE(st.note.find(c.note), std::string::npos) << what << ": " << st.note;
+            EXPECT_NE(st.note.find("the viewport shows Path Tracing"), std::string::npos) << what << ": " << st.note;
+        } else {
+            EXPECT_EQ(st.note, "") << what;
+        }
+        ViewportImage image;
+        ASSERT_TRUE(vs.image(0, &image)) << what;
+        double sum = 0.0;
+        for (float v : image.rgba) sum += v;
+        EXPECT_GT(sum, 0.0) << what << ": a black image";
+    }
 }
 
 TEST(ViewportSession, StopsAtAnyMoment) {

@@ -16,17 +16,14 @@ import weakref
 
 import bpy
 
-from .. import native
+from .. import native, schema
 from ..export import ExportError, Warnings, export_scene
-from ..params import to_native_params
+from ..params import integrator_params, to_native_params
 from ..unsupported import ignored_settings
 from .display import Display
 from .scene_sync import ImageCache, MeshCache, classify, instance_signature
 from .view_camera import view_camera
 
-# Integrators the viewport can restart at any moment and refine progressively; others fall back to PATH there
-# (with a note in the header). The native registry is the authority once it publishes the property.
-VIEWPORT_INTEGRATORS = ("PATH",)
 UNLIMITED_SAMPLES = 1 << 24
 TICK_S = 0.05
 REDRAW_FAST_S, REDRAW_SLOW_S, FAST_PERIOD_S = 0.0, 0.25, 2.0   # redraw throttle: fast just after a restart
@@ -42,7 +39,11 @@ _live = weakref.WeakSet()   # open viewports, so unregister() and the timer can 
 
 def viewport_settings(scene, view_layer):
     """(native params of the viewport's renders, header notes): the final render's settings with the viewport's
-    sample limit, no time limit or noise stop, no data passes, and a progressive integrator."""
+    sample limit, no time limit or noise stop, no data passes, and an integrator the native registry marks as
+    rendering in the viewport (capabilities()["viewport_integrators"]): the scene's chosen integrator where it can,
+    else PATH with a note (in the header, and reported once as a warning). An integrator that cannot see through
+    the view's camera (LIGHT in an orthographic view, LIGHT and BDPT through a panorama) falls back natively, with
+    the session status's note."""
     camera = scene.camera if scene.camera is not None and scene.camera.type == 'CAMERA' else None
     try:
         params = to_native_params(scene, camera.data if camera is not None else _NO_CAMERA, argv=[],
@@ -55,10 +56,19 @@ def viewport_settings(scene, view_layer):
     params["time_limit"] = 0.0
     params["noise_threshold"] = 0.0
     params.pop("passes", None)
-    if params["integrator"] not in VIEWPORT_INTEGRATORS:
-        notes.append(f"{params['integrator'].replace('_', ' ').title()} does not render progressively: the viewport "
-                     "shows Path Tracing")
+    if params["integrator"] not in schema.viewport_integrators():
+        labels = {name: label for name, _, label in schema.integrators()}
+        label = labels.get(params["integrator"], params["integrator"].replace("_", " ").title())
+        notes.append(f"{label} does not render progressively: the viewport shows Path Tracing")
+        for key in integrator_params(settings):
+            params.pop(key, None)
+        params.update(integrator_params(settings, "PATH"))
         params["integrator"] = "PATH"
+    else:
+        # PATH's own settings too (keys the chosen integrator does not read, which only a Session reports), for the
+        # native fallback to PATH through a camera the chosen one cannot see through.
+        for key, value in integrator_params(settings, "PATH").items():
+            params.setdefault(key, value)
     return params, notes
 
 
@@ -95,6 +105,8 @@ class ViewportRender:
         changes = classify(depsgraph.updates)
         settings, notes = viewport_settings(scene, depsgraph.view_layer)
         self.settings_notes = notes
+        for note in notes:   # a fallback to PATH: reported once (printed, and the latest warning in the header)
+            self._warn(f"Candela: {note}")
         first = self.exports == 0
         signature = instance_signature(depsgraph) if (first or changes.scene or changes.export) else self.signature
         if first or changes.export or signature != self.signature or self.error is not None:
@@ -146,6 +158,9 @@ class ViewportRender:
             self.engine.is_preview   # raises ReferenceError once Blender freed the engine (even if idle)
             for message in self.session.take_log():
                 self._warn(f"Candela: {message}")
+            note = self.session.status().get("note")
+            if note:   # the native fallback to PATH for this view's camera: reported once, like the settings'
+                self._warn(f"Candela: {note}")
             fresh = self.session.image_version() != self.display.version
             if (fresh and now >= self.redraw_after) or self._status_text() != self.header:
                 self.engine.tag_redraw()
@@ -196,6 +211,8 @@ class ViewportRender:
     def _status_text(self):
         status = self.session.status()
         notes = list(self.settings_notes) + list(self.view_notes)
+        if status.get("note"):
+            notes.append(status["note"])
         error = self.error or status.get("error")
         if error:
             return f"Candela: {error}"
@@ -217,6 +234,7 @@ class ViewportRender:
             text = "Waiting"
         if self.warnings:
             text += f" | {self.warnings[-1]}"
+            notes = [n for n in notes if f"Candela: {n}" != self.warnings[-1]]   # not twice
         return " | ".join([text] + notes)
 
     def _set_header(self, text):
