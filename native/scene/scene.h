@@ -7,6 +7,7 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "bsdf/material.h"
@@ -15,7 +16,9 @@
 #include "core/params.h"
 #include "core/transform.h"
 #include "lights/light.h"
+#include "lights/emitter_set.h"
 #include "lights/light_emission.h"
+#include "lights/light_sampler.h"
 #include "scene/camera.h"
 #include "scene/embree_device.h"
 #include "scene/ray_visibility.h"
@@ -102,6 +105,13 @@ public:
     void set_camera(const Params& params, const Affine& camera_to_world);
     const std::vector<Material>& materials() const { return m_materials; }
     const LightSet& lights() const { return m_lights; }
+    /// What depends only on the scene, built on first use and kept while the scene lives (thread-safe; the same
+    /// object make_light_sampler(kind, lights()) and EmitterSet(lights(), bounds()) would build, so images do not
+    /// change): the viewport renders one scene through many views (set_camera) and coarse levels, and each render
+    /// would otherwise rebuild them for every level (the light tree is O(N log N) in the emitters, every
+    /// emissive triangle one). scene/scene_light_caches.cpp.
+    const LightSampler& light_sampler(LightSelection kind) const;
+    const EmitterSet& emitters() const;
     /// Half the diagonal of the bounds of the geometry and the point lights (what the lights are finalized with).
     float radius() const { return m_radius; }
     /// The bounding sphere of the geometry, area lights and point lights (camera-world space).
@@ -208,6 +218,12 @@ private:
     SceneSphere m_bounds;
     std::vector<uint32_t> m_material_flags;  // per material: material_flags()
     SceneStats m_stats;
+    // light_sampler() and emitters(): built once each, on first use.
+    static constexpr size_t k_light_selections = size_t(LightSelection::Ward) + 1;
+    mutable std::once_flag m_light_sampler_once[k_light_selections];
+    mutable std::unique_ptr<LightSampler> m_light_samplers[k_light_selections];
+    mutable std::once_flag m_emitters_once;
+    mutable std::unique_ptr<EmitterSet> m_emitter_set;
 };
 
 }  // namespace candela

@@ -35,7 +35,7 @@ public:
         // The params were checked; a scene whose camera was replaced since (Scene::set_camera) is checked here.
         if (!scene.camera().connectable())
             throw InvalidParameter("integrator LIGHT: " + scene.camera().not_connectable_message());
-        const EmitterSet emitters(scene.lights(), scene.bounds());
+        const EmitterSet& emitters = scene.emitters();
         if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
             ctx.log("LIGHT: objects hidden from diffuse, glossy or transmission rays are visible to light paths "
                     "(only camera and shadow visibility are honoured)");
