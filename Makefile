@@ -33,8 +33,9 @@ build: deps $(BUILD)/CMakeCache.txt
 demo: build
 	$(CLEAN_ENV) bin/candela-blender -b --factory-startup -noaudio --python-exit-code 1 --python examples/demo.py -- --out out
 
+# Everything but the full GUI runs (label gui: `make test-gui`); their quick modes (label gui_quick) are in.
 test: build
-	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -j 2
+	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -j 2 -LE '^gui$$'
 
 test-native: build
 	cd $(BUILD) && ctest --output-on-failure -L native -j 2
@@ -85,9 +86,10 @@ robustness-report: build
 viewport-latency: build
 	$(CLEAN_ENV) $(PYTHON) bench/viewport_latency.py --build $(BUILD)
 
-# The GUI tests alone (Rendered viewport, Material Preview, robustness, stress; Xvfb).
+# The full GUI tests (Rendered viewport, Material Preview, robustness, stress; Xvfb); `make test` runs their quick
+# modes.
 test-gui: build
-	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -L gui
+	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -L '^gui$$'
 
 microbench: build
 	$(BUILD)/bin/candela_microbench

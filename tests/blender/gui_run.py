@@ -1,12 +1,15 @@
 """Runs one GUI test script in Blender's real window under Xvfb with Mesa's software OpenGL:
 
-    /usr/bin/python3.11 tests/blender/gui_run.py tests/blender/gui_viewport.py [--keep DIR]
+    /usr/bin/python3.11 tests/blender/gui_run.py tests/blender/gui_viewport.py [--quick] [--keep DIR]
 
 1. builds the test scene in `blender -b` (gui_scene.py) and saves it (opening a file skips the splash screen);
 2. starts Blender on it in an Xvfb display (xvfb-run, 1600x1000, 24 bit, its framebuffer in a file the script
    can read: gui_steps.py) with the script, which steps through its checks on a timer and writes a JSON verdict;
 3. passes if Blender exited normally (no crash, also not while quitting with a viewport rendering), printed no
    Python traceback and every check passed.
+
+--quick (CANDELA_GUI_QUICK=1 for the script, gui_steps.QUICK) runs the script's quick mode, which `make test`
+runs: the same kinds of checks with fewer repetitions and lower sample targets; `make test-gui` runs the full ones.
 
 Exit status 77 (ctest's SKIP_RETURN_CODE) only when no X display can be started here (no xvfb-run or Xvfb, or
 Xvfb refusing to start), with a message saying so.
@@ -48,6 +51,7 @@ def main():
     parser.add_argument("script")
     parser.add_argument("--keep", default=None, help="keep screenshots and logs in this directory")
     parser.add_argument("--timeout", type=float, default=400.0)
+    parser.add_argument("--quick", action="store_true", help="the script's quick mode (gui_steps.QUICK)")
     args = parser.parse_args()
     if shutil.which("xvfb-run") is None or shutil.which("Xvfb") is None:
         skip("no X display can be started: xvfb-run/Xvfb are not installed (make deps installs Debian's xvfb)")
@@ -56,6 +60,7 @@ def main():
     (work / "fb").mkdir(exist_ok=True)
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV")}
     env["CANDELA_GUI_DIR"] = str(work)
+    env["CANDELA_GUI_QUICK"] = "1" if args.quick else "0"
     blender = [str(REPO / "bin" / "candela-blender"), "--factory-startup", "-noaudio"]
     blend = work / "scene.blend"
     setup = subprocess.run(blender + ["-b", "--python-exit-code", "1", "--python", str(HERE / "gui_scene.py"), "--",

@@ -17,6 +17,8 @@ import bpy
 import numpy as np
 
 WORK = os.environ.get("CANDELA_GUI_DIR", "/tmp")
+# Quick mode (gui_run.py --quick, in `make test`): the scripts repeat less and aim at fewer samples.
+QUICK = os.environ.get("CANDELA_GUI_QUICK", "0") == "1"
 _checks, _notes = [], []
 
 

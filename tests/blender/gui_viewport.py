@@ -4,7 +4,12 @@ the Rendered view shows the scene and refines (less noise later); the view's own
 draws them (perspective, orthographic, camera view with zoom and pan); a transform-only edit updates the image
 without reading a mesh or building a mesh BVH; an error shows in the viewport header; deleting an object, undo,
 switching the engine and closing the view never crash and leave no viewport thread behind; Material Preview draws
-the geometry (EEVEE); quitting Blender while a viewport renders is clean (gui_run.py checks the exit status)."""
+the geometry (EEVEE); quitting Blender while a viewport renders is clean (gui_run.py checks the exit status).
+
+Quick mode (gui_steps.QUICK, in `make test`): the scene, refining to 8 samples instead of 16, the perspective view's
+marker, the transform-only edit, switching the engine and quitting; the other view modes, the error header, delete
+and undo, and Material Preview (EEVEE's shader compilation under software OpenGL is the slowest step) only in the
+full run (`make test-gui`)."""
 
 import math
 import os
@@ -69,20 +74,21 @@ def steps():
     sky = first[-5:, :5].reshape(-1, 3).mean(axis=0)
     G.check("the viewport shows the scene, not the background",
             is_red(patch(first, cube_xy)) and abs(sky[0] - sky[1]) < 0.05, f"cube {patch(first, cube_xy)} sky {sky}")
-    ok = yield from G.wait_until(lambda: final_image(vp, 16) is not None, 120)
+    refined_samples = 8 if G.QUICK else 16
+    ok = yield from G.wait_until(lambda: final_image(vp, refined_samples) is not None, 120)
     G.check("it refines to the viewport sample limit", ok, vp.header)
     refined = G.screenshot("refined")
     noise_first = G.high_pass_noise(first[int(floor_xy[1]) - 20:int(floor_xy[1]) + 20,
                                            int(floor_xy[0]) - 20:int(floor_xy[0]) + 20])
     noise_refined = G.high_pass_noise(refined[int(floor_xy[1]) - 20:int(floor_xy[1]) + 20,
                                               int(floor_xy[0]) - 20:int(floor_xy[0]) + 20])
-    # Pixel noise falls as 1/√n: from ≤ 2 to 16 samples by at least √8 ≈ 2.8; 0.7 leaves room for the 8-bit
-    # display's rounding and the filter.
+    # Pixel noise falls as 1/√n: from ≤ 2 to 16 samples by at least √8 ≈ 2.8 (to 8, quick: by at least 2); 0.7
+    # leaves room for the 8-bit display's rounding and the filter.
     G.check("less noise later", noise_refined < 0.7 * noise_first,
-            f"{noise_first:.4f} at {first_samples} samples -> {noise_refined:.4f} at 16")
+            f"{noise_first:.4f} at {first_samples} samples -> {noise_refined:.4f} at {refined_samples}")
 
     # ---- the view's own camera: the marker where Blender draws it ----
-    for mode in ('PERSP', 'ORTHO', 'CAMERA'):
+    for mode in ('PERSP',) if G.QUICK else ('PERSP', 'ORTHO', 'CAMERA'):
         request = vp.session.image_request()
         if mode == 'CAMERA':
             rv3d.view_camera_zoom, rv3d.view_camera_offset = 12.0, (0.04, -0.03)
@@ -117,6 +123,10 @@ def steps():
             vp.meshes.reads == reads and status["bvh_built"] == built,
             f"mesh reads {reads} -> {vp.meshes.reads}, BVHs built {built} -> {status['bvh_built']}, "
             f"reused {status['bvh_reused']}")
+
+    if G.QUICK:
+        yield from quick_end(scene)
+        return
 
     # ---- an error goes to the header ----
     floor = bpy.data.objects["Floor"]
@@ -173,6 +183,18 @@ def steps():
     space.shading.type = 'RENDERED'
     ok = yield from G.wait_until(lambda: G.viewports() and G.viewports()[0].display.meta is not None, 60)
     G.check("rendering again before quitting", ok)
+
+
+def quick_end(scene):
+    """Quick mode's end: switching the engine stops the viewport and its thread, switching back starts it, and
+    Blender quits while it renders."""
+    scene.render.engine = 'BLENDER_EEVEE'
+    ok = yield from G.wait_until(lambda: not G.viewports() and G.viewport_threads() == 0, 20)
+    G.check("switching the engine stops the viewport and its thread", ok,
+            f"{len(G.viewports())} viewports, {G.viewport_threads()} threads")
+    scene.render.engine = 'CANDELA'
+    ok = yield from G.wait_until(lambda: G.viewports() and G.viewports()[0].display.meta is not None, 60)
+    G.check("switching back renders again before quitting", ok)
 
 
 G.run(steps)
