@@ -6,10 +6,9 @@ without reading a mesh or building a mesh BVH; an error shows in the viewport he
 switching the engine and closing the view never crash and leave no viewport thread behind; Material Preview draws
 the geometry (EEVEE); quitting Blender while a viewport renders is clean (gui_run.py checks the exit status).
 
-Quick mode (gui_steps.QUICK, in `make test`): the scene, refining to 8 samples instead of 16, the perspective view's
-marker, the transform-only edit, switching the engine and quitting; the other view modes, the error header, delete
-and undo, and Material Preview (EEVEE's shader compilation under software OpenGL is the slowest step) only in the
-full run (`make test-gui`)."""
+Quick mode (gui_steps.QUICK, in `make test`): the scene and its refinement, the three view modes, the transform-only
+edit, switching the engine and quitting; the error header, delete and undo, and Material Preview (EEVEE's shader
+compilation under software OpenGL is the slowest step) only in the full run (`make test-gui`)."""
 
 import math
 import os
@@ -74,21 +73,20 @@ def steps():
     sky = first[-5:, :5].reshape(-1, 3).mean(axis=0)
     G.check("the viewport shows the scene, not the background",
             is_red(patch(first, cube_xy)) and abs(sky[0] - sky[1]) < 0.05, f"cube {patch(first, cube_xy)} sky {sky}")
-    refined_samples = 8 if G.QUICK else 16
-    ok = yield from G.wait_until(lambda: final_image(vp, refined_samples) is not None, 120)
+    ok = yield from G.wait_until(lambda: final_image(vp, 16) is not None, 120)
     G.check("it refines to the viewport sample limit", ok, vp.header)
     refined = G.screenshot("refined")
     noise_first = G.high_pass_noise(first[int(floor_xy[1]) - 20:int(floor_xy[1]) + 20,
                                            int(floor_xy[0]) - 20:int(floor_xy[0]) + 20])
     noise_refined = G.high_pass_noise(refined[int(floor_xy[1]) - 20:int(floor_xy[1]) + 20,
                                               int(floor_xy[0]) - 20:int(floor_xy[0]) + 20])
-    # Pixel noise falls as 1/√n: from ≤ 2 to 16 samples by at least √8 ≈ 2.8 (to 8, quick: by at least 2); 0.7
-    # leaves room for the 8-bit display's rounding and the filter.
+    # Pixel noise falls as 1/√n: from ≤ 2 to 16 samples by at least √8 ≈ 2.8; 0.7 leaves room for the 8-bit
+    # display's rounding and the filter.
     G.check("less noise later", noise_refined < 0.7 * noise_first,
-            f"{noise_first:.4f} at {first_samples} samples -> {noise_refined:.4f} at {refined_samples}")
+            f"{noise_first:.4f} at {first_samples} samples -> {noise_refined:.4f} at 16")
 
     # ---- the view's own camera: the marker where Blender draws it ----
-    for mode in ('PERSP',) if G.QUICK else ('PERSP', 'ORTHO', 'CAMERA'):
+    for mode in ('PERSP', 'ORTHO', 'CAMERA'):
         request = vp.session.image_request()
         if mode == 'CAMERA':
             rv3d.view_camera_zoom, rv3d.view_camera_offset = 12.0, (0.04, -0.03)
