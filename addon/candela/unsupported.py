@@ -62,7 +62,9 @@ def material_messages(material):
     tree = material.node_tree if material.use_nodes else None
     if _linked(tree, "ShaderNodeOutputMaterial", "Volume"):
         out.append(f"Candela: material '{material.name}': the Volume output is ignored (no volume rendering)")
-    method = displacement_method(material)
+    # The original's setting: an evaluated copy keeps the value of its last evaluation, older than an edit the
+    # depsgraph has not seen yet.
+    method = displacement_method(getattr(material, "original", None) or material)
     if method != "BUMP" and _linked(tree, "ShaderNodeOutputMaterial", "Displacement"):
         label = {"DISPLACEMENT": "Displacement Only", "BOTH": "Displacement and Bump"}.get(method, method)
         out.append(f"Candela: material '{material.name}': the Displacement output's true displacement (method "
