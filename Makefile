@@ -7,9 +7,11 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib \
-    povray
+    povray libxxhash-dev xvfb xauth libgl1-mesa-dri
+# libxxhash-dev: keys of the viewport's mesh BVH cache. xvfb, xauth and Mesa's software OpenGL (llvmpipe, in
+# libgl1-mesa-dri): the GUI tests run Blender's window under Xvfb.
 
-.PHONY: all deps build demo test bench microbench accuracy povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench accuracy povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
 
 all: build
 
@@ -31,8 +33,9 @@ build: deps $(BUILD)/CMakeCache.txt
 demo: build
 	$(CLEAN_ENV) bin/candela-blender -b --factory-startup -noaudio --python-exit-code 1 --python examples/demo.py -- --out out
 
+# Everything but the full GUI runs (label gui: `make test-gui`); their quick modes (label gui_quick) are in.
 test: build
-	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -j 2
+	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -j 2 -LE '^gui$$'
 
 test-native: build
 	cd $(BUILD) && ctest --output-on-failure -L native -j 2
@@ -91,14 +94,24 @@ test-sanitize: build
 robustness-report: build
 	$(CLEAN_ENV) $(PYTHON) tests/robustness/report.py --build $(BUILD)
 
+# View change -> first image and F12 -> first pixels in Blender's window (Xvfb), Candela beside Cycles, on the example
+# scenes and a 1-million-triangle scene, with Blender's redraw floor beside them (about 30 minutes; `make test`
+# runs a quick mode).
+viewport-latency: build
+	$(CLEAN_ENV) $(PYTHON) bench/viewport_latency.py --build $(BUILD)
+
+# The full GUI tests (Rendered viewport, Material Preview, robustness, stress; Xvfb); `make test` runs their quick
+# modes.
+test-gui: build
+	cd $(BUILD) && $(CLEAN_ENV) ctest --output-on-failure -L '^gui$$'
+
 microbench: build
 	$(BUILD)/bin/candela_microbench
 
-# Installs the built add-on (with its native module) into the user's Blender 3.4 add-on folder.
+# Installs the built add-on (with its native module) into the user's Blender 3.4 add-on folder, after checking
+# that the copy is complete and its native module loads (bin/install-addon: a truncated .so crashes Blender).
 install-addon: build
-	@dest="$${BLENDER_USER_SCRIPTS:-$$HOME/.config/blender/3.4/scripts}/addons/candela"; \
-	rm -rf "$$dest" && mkdir -p "$$(dirname "$$dest")" && cp -r $(BUILD)/scripts/addons/candela "$$dest" && \
-	echo "Installed to $$dest; enable 'Render: Candela' in Edit > Preferences > Add-ons (or run blender --addons candela)"
+	$(CLEAN_ENV) $(PYTHON) bin/install-addon --build $(BUILD)
 
 clean:
 	rm -rf $(BUILD) out

@@ -7,6 +7,7 @@ camera's data, and command-line overrides. Nothing else builds params.
 import numpy as np
 
 from . import cmdline, schema
+from .export.common import ExportError
 from .passes import native_pass_list
 
 # The settings every integrator reads, sent always (the native side publishes them as common_params; a test checks
@@ -26,9 +27,10 @@ def setting_value(spec, value):
     return str(value)
 
 
-def integrator_params(settings):
-    """The chosen integrator's own settings (and only its: another integrator's keys would be unknown to it)."""
-    specs = schema.integrator_params().get(settings.integrator, [])
+def integrator_params(settings, integrator=None):
+    """The chosen integrator's own settings (and only its: another integrator's keys would be unknown to it), or
+    those of `integrator` (the viewport's fallback to PATH)."""
+    specs = schema.integrator_params().get(integrator or settings.integrator, [])
     return {spec["key"]: setting_value(spec, getattr(settings, spec["key"])) for spec in specs}
 
 
@@ -56,11 +58,35 @@ def result_size(render):
     return x1 - x0, y1 - y0
 
 
+# The panoramic projections the native camera renders (scene/camera.h); Blender 3.4 keeps a camera's panorama
+# settings in the Cycles add-on's properties (camera.data.cycles).
+PANORAMA_TYPES = ("EQUIRECTANGULAR", "FISHEYE_EQUIDISTANT", "FISHEYE_EQUISOLID")
+
+
+class CameraError(ExportError, ValueError):
+    """A camera setting Candela cannot render; the message names the camera and the setting."""
+
+
+def panorama_params(camera_data):
+    """The panorama keys of a PANO camera (Cycles' settings), or CameraError naming what is missing."""
+    settings = getattr(camera_data, "cycles", None)
+    if settings is None:
+        raise CameraError(f"camera '{camera_data.name}' is panoramic, but Blender 3.4 keeps panorama settings in "
+                          "the Cycles add-on, which is disabled: enable Cycles (Edit > Preferences > Add-ons)")
+    kind = settings.panorama_type
+    if kind not in PANORAMA_TYPES:
+        raise CameraError(f"camera '{camera_data.name}': panorama type {kind} is not supported (Candela renders "
+                          "Equirectangular, Fisheye Equidistant and Fisheye Equisolid)")
+    return {"panorama_type": kind, "fisheye_fov": float(settings.fisheye_fov),
+            "fisheye_lens": float(settings.fisheye_lens), "latitude_min": float(settings.latitude_min),
+            "latitude_max": float(settings.latitude_max), "longitude_min": float(settings.longitude_min),
+            "longitude_max": float(settings.longitude_max)}
+
+
 def camera_params(camera_data):
     cam = camera_data
-    return {
-        # PANO is not supported yet: render it as a perspective camera rather than failing the frame.
-        "camera_type": "ORTHO" if cam.type == 'ORTHO' else "PERSP",
+    params = {
+        "camera_type": {"ORTHO": "ORTHO", "PANO": "PANO"}.get(cam.type, "PERSP"),
         "sensor_fit": cam.sensor_fit,
         "sensor_width": float(cam.sensor_width),
         "sensor_height": float(cam.sensor_height),
@@ -71,6 +97,9 @@ def camera_params(camera_data):
         "clip_start": float(cam.clip_start),
         "clip_end": float(cam.clip_end),
     }
+    if cam.type == 'PANO':
+        params.update(panorama_params(cam))
+    return params
 
 
 def focus_object_distance(camera_matrix, focus_object, subtarget=""):

@@ -81,9 +81,18 @@ class CandelaRenderSettings(bpy.types.PropertyGroup):
         "even if not all samples are done; 0 = no limit. Renders then differ between machines", default=0.0,
         min=0.0, soft_max=3600.0, subtype='TIME_ABSOLUTE', unit='TIME_ABSOLUTE')
     noise_threshold: FloatProperty(
-        name="Noise Threshold", description="Stop once the estimated relative error (RMSE / mean) of the whole "
-        "image is below this with a confidence margin; 0 = off. Checked from 16 samples per pixel on", default=0.0, min=0.0, max=0.5,
+        name="Image Noise Stop", description="Stop the whole render once the estimated relative error (RMSE / "
+        "mean) of the whole image is below this, with a confidence margin; 0 = off. Checked from 16 samples per "
+        "pixel on. Not Cycles' Noise Threshold, which is per-pixel adaptive sampling (typically 0.01): here 0.01 "
+        "asks for 1 % error over the whole image, a long render", default=0.0, min=0.0, max=0.5,
         soft_max=0.1, precision=3, step=0.1)
+    viewport_samples: IntProperty(
+        name="Viewport Samples", description="Samples per pixel the Rendered viewport refines to; 0 = until the "
+        "view changes", default=1024, min=0, soft_max=4096)
+    viewport_start_resolution: IntProperty(
+        name="Start Resolution", description="After a change the viewport first renders with at most this many "
+        "pixels across (squared: in total), then doubles the resolution up to the full view, so moving the view "
+        "shows an image at once", default=64, min=8, max=16384, subtype='PIXEL')
     # integrator and the integrators' own settings: added in register(), from the native module loaded by then
 
 

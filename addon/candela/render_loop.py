@@ -8,7 +8,9 @@ import time
 
 from . import native
 from .export import ExportError, Warnings, export_scene, name_objects, render_camera
+from .export.camera import camera_to_world
 from .params import result_size, to_native_params
+from .unsupported import ignored_settings
 
 POLL_S = 0.05                # wait() timeout: test_break() polled at 20 Hz + native cancel (< 10 ms) keeps Esc under 100 ms
 STATUS_INTERVAL_S = 1.0      # update_stats prints one line per call in -b: at most 1 Hz
@@ -16,11 +18,14 @@ DISPLAY_FIRST_S = 0.5        # first progressive refresh; then the interval doub
 DISPLAY_CAP_S = 4.0          # ... up to this in the UI
 DISPLAY_CAP_BACKGROUND_S = 30.0   # nobody watches in -b: copying the image is wasted work
 
-# Native statistics of the most recent render in this process (session.stats() plus samples_done, phase, stop
-# reason, noise estimate and the warnings reported), for scripts that drive bpy.ops.render.render() and want the
-# engine's own numbers (make bench, make demo, tests).
+# Native statistics of the most recent final render in this process (session.stats() plus samples_done, phase,
+# stop reason, noise estimate and the warnings reported), for scripts that drive bpy.ops.render.render() and want
+# the engine's own numbers (make bench, make demo, tests). A published record, not render state: a final render
+# replaces it as a whole when it ends (previews and the viewport never touch it), so a preview running beside a
+# final render cannot change what the render reports.
 last_render_stats = {}
-_warnings = []   # warnings reported during the current render
+
+PREVIEW_PARAMS = {"samples": 32, "max_bounces": 8, "integrator": "PATH", "time_limit": 0.0, "noise_threshold": 0.0}
 
 
 class Backoff:
@@ -112,32 +117,67 @@ def _copy_pass(session, passes, name, width, height):
     return True
 
 
-def _warn(engine, message):
-    _warnings.append(message)
+class RenderRecord:
+    """What one render (a final render of one view layer, or a preview) reports: its own, never shared."""
+
+    def __init__(self, publish=True):
+        self.warnings = []
+        self.publish = publish   # final renders publish last_render_stats; previews do not
+
+
+def _warn(engine, message, record):
+    if message in record.warnings:
+        return
+    record.warnings.append(message)
     engine.report({'WARNING'}, message)
 
 
-def _forward_log(engine, session):
+def _forward_log(engine, session, record):
     for entry in session.take_log():
         message = entry[-1] if isinstance(entry, (tuple, list)) else entry
-        _warn(engine, f"Candela: {message}")
+        _warn(engine, f"Candela: {message}", record)
+
+
+def with_latest_warning(line, record):
+    """The status line with the latest warning after it, in every status update: the image editor's header and
+    the terminal show it while the render runs, where the Info editor is usually not open. (When the render ends,
+    Blender replaces the line with its own frame/time/memory summary.)"""
+    if not record.warnings:
+        return line
+    latest = record.warnings[-1]
+    more = len(record.warnings) - 1
+    return f"{line} | {latest}" + (f" (+{more} more in the Info editor)" if more else "")
+
+
+def _memory_stats(engine, session):
+    """Candela's own memory in the header (Blender otherwise shows another engine's figure from earlier)."""
+    try:
+        stats = session.stats()
+        film = session.width * session.height * float(native.capabilities().get("film_bytes_per_pixel", 0.0))
+        mb = (float(stats.get("scene_bytes", 0)) + film) / (1024.0 * 1024.0)
+        engine.update_memory_stats(memory_used=mb, memory_peak=mb)
+    except (AttributeError, TypeError):   # stand-in engines in tests
+        pass
 
 
 def drive(engine, session, layer="", integrator="PATH", background=False, clock=time.monotonic, out=print,
-          names=None):
+          names=None, record=None, view=""):
     """Poll a started session until it finishes or `engine.test_break()`; always ends the result.
 
     Returns the final `session.progress()`; raises RuntimeError if the native render failed (after the partial
     image was handed to Blender), naming objects by `names` (export_scene's) where the message names a mesh.
+    `record` collects this render's warnings; `view` is the multiview view the result is for ("" = mono).
     """
+    record = record if record is not None else RenderRecord()
     width, height = session.width, session.height
-    result = engine.begin_result(0, 0, width, height, layer=layer)
+    result = engine.begin_result(0, 0, width, height, layer=layer, view=view)
     joined = False
     try:
         passes = _result_passes(result)
         start = clock()
         display = Backoff(DISPLAY_FIRST_S, 2.0, DISPLAY_CAP_BACKGROUND_S if background else DISPLAY_CAP_S, start)
         status = Backoff(STATUS_INTERVAL_S, 1.0, STATUS_INTERVAL_S, start)
+        shown = False
         while not session.wait(POLL_S):
             if engine.test_break():
                 session.cancel()
@@ -146,10 +186,14 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
             progress = session.progress()
             engine.update_progress(float(progress.get("fraction", 0.0)))
             if status.due(now):
-                engine.update_stats("", status_line(integrator, progress))
-                _forward_log(engine, session)
-            if display.due(now) and _copy_pass(session, passes, "Combined", width, height):
+                engine.update_stats("", with_latest_warning(status_line(integrator, progress), record))
+                _forward_log(engine, session, record)
+                _memory_stats(engine, session)
+            # The first pass is shown as soon as it is done (first pixels after F12), then at growing intervals.
+            first = not background and not shown and int(progress.get("samples_done", 0)) >= 1
+            if (first or display.due(now)) and _copy_pass(session, passes, "Combined", width, height):
                 engine.update_result(result)
+                shown = True
         session.join()
         joined = True
         # Final (or, after a cancel, partial) image and the other passes: end_result hands them to Blender.
@@ -162,15 +206,17 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
         engine.end_result(result)
 
     progress = session.progress()
-    last_render_stats.clear()
-    _forward_log(engine, session)
-    last_render_stats.update(session.stats(), samples_done=progress.get("samples_done"), phase=progress.get("phase"),
-                             stop_reason=progress.get("stop_reason"), relative_error=progress.get("relative_error"),
-                             warnings=list(_warnings))
+    _forward_log(engine, session, record)
+    _memory_stats(engine, session)
+    if record.publish:
+        global last_render_stats
+        last_render_stats = dict(session.stats(), samples_done=progress.get("samples_done"),
+                                 phase=progress.get("phase"), stop_reason=progress.get("stop_reason"),
+                                 relative_error=progress.get("relative_error"), warnings=list(record.warnings))
     if session.error:
         raise RuntimeError(name_objects(session.error, names))
     engine.update_progress(1.0)
-    engine.update_stats("", status_line(integrator, progress))
+    engine.update_stats("", with_latest_warning(status_line(integrator, progress), record))
     out(summary_line(session, progress, width, height))
     return progress
 
@@ -188,10 +234,36 @@ def summary_line(session, progress, width, height):
     return f"Candela: rendered {width}x{height}, {what} in {seconds:.2f} s ({rate:.1f} samples/s)"
 
 
+def result_views(engine, width, height, layer):
+    """The view names Blender expects results for: ["left", "right"] for stereo 3D, [""] for mono."""
+    if not hasattr(engine, "active_view_set"):   # stand-in engines in tests
+        return [""]
+    probe = engine.begin_result(0, 0, width, height, layer=layer)
+    try:
+        names = [v.name for v in getattr(probe, "views", ())]
+    finally:
+        engine.end_result(probe, cancel=True, do_merge_results=False)
+    return names if len(names) > 1 else [""]
+
+
+def view_camera(engine, camera_eval, view):
+    """(camera → world matrix, shift_x) of the camera for one multiview view, as Blender computes each eye (its
+    interocular offset, convergence and shift); the object's own for mono."""
+    if not view or not hasattr(engine, "camera_model_matrix"):
+        return camera_eval.matrix_world, None
+    engine.active_view_set(view)
+    spherical = engine.use_spherical_stereo(camera_eval)
+    return engine.camera_model_matrix(camera_eval, use_spherical_stereo=spherical), \
+        float(engine.camera_shift_x(camera_eval, use_spherical_stereo=spherical))
+
+
 def render_frame(engine, depsgraph, background=False):
-    """The whole final render of one view layer (engine.render forwards here)."""
+    """The whole final render (or material/world/light preview) of one view layer (engine.render forwards here):
+    every multiview view of it, each through its own camera."""
     nat = native.require()
     scene = depsgraph.scene
+    preview = bool(getattr(engine, "is_preview", False))
+    record = RenderRecord(publish=not preview)
     layer = depsgraph.view_layer.name
     camera = render_camera(scene, engine.camera_override)
     width, height = result_size(scene.render)
@@ -199,23 +271,40 @@ def render_frame(engine, depsgraph, background=False):
     names = {}
     arrays = export_scene(depsgraph, camera, test_break=engine.test_break,
                           status=lambda text: engine.update_stats("", text), warnings=warnings, names=names)
-    _warnings.clear()
+    if not preview:   # a preview's tiny scene is Blender's: its settings are not the user's to fix
+        for message in ignored_settings(depsgraph, camera):
+            warnings.add(message)
     for message in warnings.messages:
-        _warn(engine, message)
+        _warn(engine, message, record)
     if arrays is None:
         # Cancelled while exporting: still hand Blender a (blank) result, never none at all.
         engine.end_result(engine.begin_result(0, 0, width, height, layer=layer))
         return None
     camera_eval = camera.original.evaluated_get(depsgraph)
     params = to_native_params(scene, camera_eval.data, camera_object=camera_eval, view_layer=depsgraph.view_layer)
-    engine.update_stats("", "Building scene")
-    try:
-        # Validates everything and refuses a scene or film that cannot fit in memory, before building anything.
-        session = nat.Session(arrays, params)
-    except ValueError as e:
-        raise ExportError(name_objects(str(e), names)) from None
-    del arrays   # the session holds its own copy: do not keep two while the BVH is built
-    if (session.width, session.height) != (width, height):
-        raise RuntimeError(f"native film is {session.width}x{session.height}, Blender expects {width}x{height}")
-    session.start()
-    return drive(engine, session, layer=layer, integrator=params["integrator"], background=background, names=names)
+    if preview:
+        params.update(PREVIEW_PARAMS)
+        params.pop("passes", None)
+    views = result_views(engine, width, height, layer)
+    progress = None
+    for i, view in enumerate(views):
+        matrix, shift_x = view_camera(engine, camera_eval, view)
+        view_arrays = arrays if not view else dict(arrays, camera_to_world=camera_to_world(matrix))
+        view_params = params if shift_x is None else dict(params, shift_x=shift_x)
+        engine.update_stats("", "Building scene")
+        try:
+            # Validates everything and refuses a scene or film that cannot fit in memory, before building anything.
+            session = nat.Session(view_arrays, view_params)
+        except ValueError as e:
+            raise ExportError(name_objects(str(e), names)) from None
+        del view_arrays
+        if i == len(views) - 1:
+            del arrays   # the session holds its own copy: do not keep two while the BVH is built
+        if (session.width, session.height) != (width, height):
+            raise RuntimeError(f"native film is {session.width}x{session.height}, Blender expects {width}x{height}")
+        session.start()
+        progress = drive(engine, session, layer=layer, integrator=view_params["integrator"], background=background,
+                         names=names, record=record, view=view)
+        if engine.test_break():
+            break
+    return progress

@@ -21,6 +21,7 @@ DISTRIBUTIONS = {"GGX": 0, "BECKMANN": 1}
 LIGHT_TYPES = {"POINT": 0, "SPOT": 1, "SUN": 2, "AREA": 3}
 INSTANCE_FLAGS = {"CAMERA": 1, "DIFFUSE": 2, "GLOSSY": 4, "TRANSMISSION": 8, "SHADOW": 16, "HOLDOUT": 32}
 INTEGRATORS = ("PATH",)
+VIEWPORT_INTEGRATORS = ("PATH",)
 
 # Shader programs (docs/architecture.md, "Shader programs"): every enumeration by its native name, in value order.
 SHADER_ENUMS = {
@@ -118,6 +119,12 @@ def integrators():
         label = str(entry[2]) if len(entry) > 2 else name.replace("_", " ").title()
         result.append((name, description, label))
     return tuple(result)
+
+
+def viewport_integrators():
+    """Names of the integrators the 3D viewport renders with (the registry's `viewport` flag); the viewport shows
+    the others with PATH."""
+    return tuple(str(name) for name in _cap("viewport_integrators", VIEWPORT_INTEGRATORS))
 
 
 def integrator_params():

@@ -21,35 +21,39 @@ namespace candela {
 const std::vector<IntegratorEntry>& integrator_registry() {
     static const std::vector<IntegratorEntry> registry = {
         {"PATH", "Path Tracing", "Path tracing with next-event estimation and multiple importance sampling",
-         &make_path_integrator, &PathSettings::specs},
+         &make_path_integrator, &PathSettings::specs, nullptr, /*viewport=*/true},
         {"LIGHT", "Light Tracing",
          "Particle tracing from the lights, every vertex connected to the camera (emitters seen directly or through "
          "mirrors and glass by a camera pass; surfaces seen only through them stay dark: use BDPT)",
-         &make_light_integrator, &LightSettings::specs, &light_integrator_memory},
+         &make_light_integrator, &LightSettings::specs, &light_integrator_memory, /*viewport=*/true,
+         /*needs_camera_connection=*/true, /*panoramic=*/false},
         {"BDPT", "Bidirectional",
          "Bidirectional path tracing: camera and light subpaths joined by every (s, t) strategy, weighted by multiple "
          "importance sampling (Veach 1997, ch. 10)",
-         &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory},
+         &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory, /*viewport=*/true,
+         /*needs_camera_connection=*/false, /*panoramic=*/false},
         {"SURFACE_SAMPLING", "Surface Sampling",
          "The course's surface-sampling generator: indirect light from a point on a light and a point on any surface, "
          "joined by two visibility checks (direct light by next-event estimation, mirrors and glass by ray tracing)",
-         &make_surface_sampling_integrator, &GeneratorSettings::specs},
+         &make_surface_sampling_integrator, &GeneratorSettings::specs, nullptr, /*viewport=*/true},
         {"SOURCE_SHOOTING", "Source Shooting",
          "The course's source-shooting generator: indirect light from a ray shot from a light, its hits connected to "
          "the visible point (direct light by next-event estimation, mirrors and glass by ray tracing)",
-         &make_source_shooting_integrator, &GeneratorSettings::specs},
+         &make_source_shooting_integrator, &GeneratorSettings::specs, nullptr, /*viewport=*/true},
         {"RECEIVER_GATHERING", "Receiver Gathering",
          "The course's receiver-gathering generator: indirect light from a ray shot from the visible point, its hit "
          "connected to a point on a light (direct light by next-event estimation, mirrors and glass by ray tracing)",
-         &make_receiver_gathering_integrator, &GeneratorSettings::specs},
+         &make_receiver_gathering_integrator, &GeneratorSettings::specs, nullptr, /*viewport=*/true},
         {"MLT", "Metropolis",
          "Primary-sample-space Metropolis light transport over the bidirectional path tracer (Kelemen et al. 2002): "
          "chains of mutated paths, for light that is hard to find; Samples are mutations per pixel",
-         &make_mlt_integrator, &MltSettings::specs, &mlt_integrator_memory},
+         &make_mlt_integrator, &MltSettings::specs, &mlt_integrator_memory, /*viewport=*/false,
+         /*needs_camera_connection=*/false, /*panoramic=*/false},
         {"MMLT", "Multiplexed Metropolis",
          "Multiplexed Metropolis light transport (Hachisuka et al. 2014): chains over path length and one "
          "bidirectional strategy chosen per mutation; Samples are mutations per pixel",
-         &make_mmlt_integrator, &MltSettings::specs, &mlt_integrator_memory},
+         &make_mmlt_integrator, &MltSettings::specs, &mlt_integrator_memory, /*viewport=*/false,
+         /*needs_camera_connection=*/false, /*panoramic=*/false},
         {"IRRADIANCE_CACHE", "Irradiance Cache",
          "Ward's irradiance cache with gradients: indirect diffuse light interpolated from path-traced records, "
          "direct light and glossy paths traced per sample (biased, consistent as the error a shrinks)",

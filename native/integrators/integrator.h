@@ -42,6 +42,19 @@ struct IntegratorEntry {
     /// splat buffers), for the session's estimate; null: nothing beyond the scene and the film. It may throw
     /// InvalidParameter naming the setting whose budget cannot fit.
     double (*memory_bytes)(const Params& params, double film_pixels) = nullptr;
+    /// Renders in the 3D viewport (published as capabilities()["viewport_integrators"]): progressive from its first
+    /// pass — every pass refines the whole image and the film shows a valid image between passes — and nothing
+    /// per render that a restart after each view change would have to repeat at a cost a coarse level cannot
+    /// amortise (a photon map, a cache, a Markov chain's burn-in). The viewport renders the others with PATH, with
+    /// a note in its header.
+    bool viewport = false;
+    /// Every estimate it makes ends in a connection to the camera (Camera::connectable()): it refuses a camera
+    /// that has none (the orthographic pinhole, a panorama), and the viewport falls back to PATH for such a view.
+    bool needs_camera_connection = false;
+    /// Renders through a panoramic camera (Camera::is_panoramic()); false: it refuses one by name (LIGHT and
+    /// BDPT, whose t = 1 connections invert a perspective or orthographic viewplane), and the viewport falls back
+    /// to PATH for a panoramic camera view.
+    bool panoramic = true;
 };
 
 const std::vector<IntegratorEntry>& integrator_registry();

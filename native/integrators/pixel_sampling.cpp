@@ -31,9 +31,11 @@ const std::vector<ParamSpec>& common_param_specs() {
         float_param("time_limit", "Time Limit", 0.0, 0.0, 1e9,
                     "Stop rendering after this many seconds (after export and scene build), even if not all samples "
                     "are done; 0 = no limit. Renders then differ between machines", "", 3600.0),
-        float_param("noise_threshold", "Noise Threshold", 0.0, 0.0, 0.5,
-                    "Stop once the estimated relative error (RMSE / mean) of the whole image is below this with a "
-                    "confidence margin; 0 = off. Checked from 16 samples per pixel on", "", 0.1),
+        float_param("noise_threshold", "Image Noise Stop", 0.0, 0.0, 0.5,
+                    "Stop the whole render once the estimated relative error (RMSE / mean) of the whole image is below "
+                    "this, with a confidence margin; 0 = off. Checked from 16 samples per pixel on. Not Cycles' Noise "
+                    "Threshold, which is per-pixel adaptive sampling (typically 0.01): here 0.01 asks for 1 % error "
+                    "over the whole image, a long render", "", 0.1),
     };
     return specs;
 }

@@ -1,5 +1,7 @@
 // candela._native: the pybind11 boundary (docs/architecture.md). Flat numpy arrays and a params dict in,
 // a Session out. Blocking calls release the GIL; no worker thread ever calls into Python.
+#include <cmath>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -14,7 +16,9 @@
 #include "lights/light.h"
 #include "sampling/sampler.h"
 #include "scene/ray_visibility.h"
+#include "session/memory_estimate.h"
 #include "session/session.h"
+#include "session/viewport_session.h"
 #include "texture/node_math.h"
 #include "texture/shader_program.h"
 
@@ -142,11 +146,15 @@ py::dict capabilities() {
     py::dict d;
     py::list integrators;
     py::dict integrator_params;
+    py::list viewport_integrators;
     for (const auto& e : integrator_registry()) {
         integrators.append(py::make_tuple(e.name, e.description, e.label));
         integrator_params[py::str(e.name)] = spec_list(e.specs());
+        if (e.viewport) viewport_integrators.append(e.name);
     }
     d["integrators"] = integrators;
+    // The integrators the 3D viewport renders with (IntegratorEntry::viewport); it shows the others with PATH.
+    d["viewport_integrators"] = viewport_integrators;
     d["integrator_params"] = integrator_params;
     d["common_params"] = spec_list(common_param_specs());
     d["target_arch"] = CANDELA_TARGET_ARCH;
@@ -204,6 +212,7 @@ py::dict capabilities() {
     py::dict strategy_passes;  // BDPT's strategy images by strategy depth (bdpt_strategy_depth's range)
     for (int depth = 0; depth <= 4; ++depth) strategy_passes[py::int_(depth)] = Session::strategy_pass_names(depth);
     d["bdpt_strategy_passes"] = strategy_passes;
+    d["film_bytes_per_pixel"] = film_bytes_per_pixel();  // for the memory figure in Blender's header
     return d;
 }
 
@@ -219,6 +228,67 @@ py::object get_pass(const Session& s, const std::string& name) {
     py::array_t<float> out({pixels, size_t(channels)});
     std::copy(data.begin(), data.end(), out.mutable_data());
     return std::move(out);
+}
+
+Affine affine_from(const py::handle& matrix) {
+    auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(matrix);
+    if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+        throw InvalidParameter("camera_to_world must be a 4x4 matrix");
+    for (ssize_t i = 0; i < 16; ++i)
+        if (!std::isfinite(a.data()[i])) throw InvalidParameter("camera_to_world is not finite");
+    return Affine::from_rows(a.data());
+}
+
+uint64_t viewport_update_scene(ViewportSession& s, const py::dict& arrays_dict, const py::dict& params_dict) {
+    std::vector<std::string> unknown;
+    SceneArrays arrays = arrays_from_dict(arrays_dict, &unknown);
+    Params params = params_from_dict(params_dict);
+    py::gil_scoped_release release;  // validation of millions of triangles needs no Python
+    return s.update_scene(std::move(arrays), std::move(params));
+}
+
+py::object viewport_image(const ViewportSession& s, uint64_t since) {
+    ViewportImage image;
+    bool fresh;
+    {
+        py::gil_scoped_release release;
+        fresh = s.image(since, &image);
+    }
+    if (!fresh) return py::none();
+    py::array_t<float> pixels({size_t(image.height), size_t(image.width), size_t(4)});
+    std::copy(image.rgba.begin(), image.rgba.end(), pixels.mutable_data());
+    py::dict d;
+    d["version"] = image.version;
+    d["request"] = image.request;
+    d["frame_width"] = image.frame_width;
+    d["frame_height"] = image.frame_height;
+    d["x0"] = image.x0;
+    d["y0"] = image.y0;
+    d["width"] = image.width;
+    d["height"] = image.height;
+    d["pixel_size"] = image.pixel_size;
+    d["samples"] = image.samples;
+    d["pixels"] = pixels;
+    return std::move(d);
+}
+
+py::dict viewport_status(const ViewportSession& s) {
+    const ViewportStatus st = s.status();
+    py::dict d;
+    d["phase"] = st.phase;
+    d["samples_done"] = st.samples_done;
+    d["samples_total"] = st.samples_total;
+    d["pixel_size"] = st.pixel_size;
+    d["build_seconds"] = st.build_seconds;
+    d["seconds_to_first_image"] = st.seconds_to_first_image >= 0.0 ? py::object(py::float_(st.seconds_to_first_image))
+                                                                    : py::none();
+    d["scene_bytes"] = st.scene_bytes;
+    d["film_bytes"] = st.film_bytes;
+    d["bvh_built"] = st.bvh_built;
+    d["bvh_reused"] = st.bvh_reused;
+    d["error"] = st.error ? py::object(py::str(*st.error)) : py::none();
+    d["note"] = st.note;
+    return d;
 }
 
 }  // namespace
@@ -317,4 +387,24 @@ PYBIND11_MODULE(_native, m) {
         .def_property_readonly("error", &Session::error)
         .def_property_readonly("width", &Session::width)
         .def_property_readonly("height", &Session::height);
+
+    // The 3D viewport's session (session/viewport_session.h): scene, settings and view updates restart it.
+    py::class_<ViewportSession>(m, "ViewportSession")
+        .def(py::init<int>(), py::arg("threads") = 0)
+        .def("update_scene", &viewport_update_scene, py::arg("arrays"), py::arg("params"))
+        .def("update_settings",
+             [](ViewportSession& s, const py::dict& params) { return s.update_settings(params_from_dict(params)); },
+             py::arg("params"))
+        .def("set_view",
+             [](ViewportSession& s, const py::dict& view, const py::handle& camera_to_world) {
+                 return s.set_view(params_from_dict(view), affine_from(camera_to_world));
+             },
+             py::arg("view"), py::arg("camera_to_world"))
+        .def("pause", &ViewportSession::pause)
+        .def("stop", &ViewportSession::stop, py::call_guard<py::gil_scoped_release>())
+        .def("image_version", &ViewportSession::image_version)
+        .def("image_request", &ViewportSession::image_request)
+        .def("image", &viewport_image, py::arg("since") = 0)
+        .def("status", &viewport_status)
+        .def("take_log", &ViewportSession::take_log);
 }

@@ -5,6 +5,18 @@
 // orthographic camera; the aperture radius is lens/(2·f-stop), lens in metres, or 1/(2·f-stop) orthographic).
 // Raster coordinates are Blender's: x to the right, y up, (0, 0) the bottom-left corner of the full frame.
 //
+// Panoramic cameras (camera_type PANO; Cycles 3.4 kernel/camera/projection.h): equirectangular (a latitude /
+// longitude range), fisheye equidistant (the angle from the axis grows linearly with the radius: θ = r·fov/2 on
+// the unit circle inscribed in the frame) and fisheye equisolid (r = 2·lens·sin(θ/2) on the sensor, up to the
+// field of view). Cycles' panorama space looks down +x with +z up; it is turned into Blender's camera space (−z
+// forward, +y up) so the same camera_to_world applies. Rays outside a fisheye's image circle carry nothing
+// (tmax = tmin = 0: integrators return black for them, as Cycles does).
+//
+// The 3D viewport (Cycles' blender_camera_from_view) adds a zoom of the viewplane and an offset of it
+// (view_zoom, view_offset_x/y: camera view zoom and pan), lets an orthographic view start rays behind the view
+// (clip_start < 0) and, in the camera view of a panoramic camera, maps the frame to the part of the panorama the
+// viewport shows (pano_left/right/bottom/top, fractions of the camera frame).
+//
 // Camera importance (scene/camera_importance.cpp): the camera seen from the scene, for light-rooted strategies
 // (light tracing, bidirectional path tracing): connections from a world point to the lens, the raster position of
 // a camera ray, its position and direction densities, and the importance K of a connection.
@@ -59,6 +71,14 @@ public:
     /// [0, 1)², the sampler's Lens dimension) picks the point on the aperture; a pinhole camera ignores it.
     Ray generate_ray(Vec2 raster, Vec2 u_lens = {0.5f, 0.5f}) const;
     bool has_aperture() const { return !m_aperture.is_pinhole(); }
+    /// Panoramic projection (no viewplane): integrators that connect vertices to the camera must refuse it or
+    /// project through panorama_direction's inverse.
+    bool is_panoramic() const { return m_pano != Panorama::None; }
+    enum class Panorama { None, Equirectangular, FisheyeEquidistant, FisheyeEquisolid };
+    Panorama panorama() const { return m_pano; }
+    /// Camera-space direction (Blender's: −z forward) of the panorama at frame fractions (u, v) ∈ [0, 1]²; the
+    /// zero vector outside a fisheye's image circle.
+    Vec3 panorama_direction(float u, float v) const;
     const Aperture& aperture() const { return m_aperture; }
     float focus_distance() const { return m_focus_distance; }
     /// Unit view direction (the camera's −Z axis); depth = dot(p − position(), forward()) (Cycles' Z depth).
@@ -78,11 +98,24 @@ public:
 
     // ---- Importance (scene/camera_importance.cpp) ----------------------------------------------------------
     bool orthographic() const { return m_ortho; }
-    /// False only for a pinhole orthographic camera: its rays have one direction (a delta), so no strategy that
-    /// connects a scene point to the camera, or hits the camera, can reach it.
-    bool connectable() const { return !m_ortho || has_aperture(); }
-    /// "" if connectable(), else k_not_connectable_message (for the integrator's error or log line).
-    std::string not_connectable_message() const { return connectable() ? std::string() : k_not_connectable_message; }
+    /// False for a pinhole orthographic camera (its rays have one direction, a delta, so no strategy that connects
+    /// a scene point to the camera, or hits the camera, can reach it) and for a panoramic camera (connect,
+    /// raster_of and pdf_we invert the viewplane projection, which a panorama does not have: its t = 1 strategies
+    /// are not implemented).
+    bool connectable() const { return !is_panoramic() && (!m_ortho || has_aperture()); }
+    /// "" if connectable(), else what the integrator reports, naming the camera type: k_not_connectable_message for
+    /// the orthographic pinhole, panoramic_not_connectable_message for a panorama.
+    std::string not_connectable_message() const;
+    /// The camera a light-rooted strategy cannot reach, for messages: "the orthographic camera without depth of
+    /// field" or "the panoramic camera (Fisheye Equisolid)"; "" if connectable().
+    std::string not_connectable_kind() const;
+    /// The message for a panoramic camera of panorama_type `type` (EQUIRECTANGULAR, FISHEYE_EQUIDISTANT, ...), so
+    /// an integrator can refuse it from its params before the scene is built ("integrator X: " + this).
+    static std::string panoramic_not_connectable_message(const std::string& type);
+    /// The panorama's panorama_type ("FISHEYE_EQUISOLID"); "" if not panoramic.
+    std::string panorama_type_name() const;
+    /// Blender's label of a panorama_type ("FISHEYE_EQUISOLID" → "Fisheye Equisolid").
+    static std::string panorama_label(const std::string& type);
     /// A pinhole perspective camera: every ray starts at position() (CameraConnection::delta_pos).
     bool delta_position() const { return !m_ortho && !has_aperture(); }
     /// Samples the lens point with u_lens (the same warp generate_ray uses) and returns the connection to world
@@ -106,6 +139,9 @@ public:
     float lens_area() const { return m_aperture.area(); }
 
 private:
+    Ray generate_panoramic_ray(Vec2 raster) const;
+    void read_panorama(const Params& params, bool pano, float sensor_width, float sensor_height, const std::string& fit,
+                       float pixel_aspect_x, float pixel_aspect_y);
     /// The raster position of viewplane point (sx, sy); false outside the full frame [0, W] × [0, H].
     bool viewplane_to_raster(float sx, float sy, Vec2* raster, float margin = 0.f) const;
     /// The camera-space ray of a world ray, with its origin moved along it onto the lens plane (z = 0,
@@ -116,6 +152,11 @@ private:
     Affine m_to_world;
     Affine m_to_camera;  // m_to_world's inverse
     bool m_ortho = false;
+    Panorama m_pano = Panorama::None;
+    float m_pano_range[4] = {0.f, 0.f, 0.f, 0.f};   // equirectangular: φ = r0·u + r1, θ = r2·v + r3
+    float m_fisheye_fov = 3.14159265f, m_fisheye_lens = 10.5f;
+    float m_pano_sensor_w = 36.f, m_pano_sensor_h = 24.f;   // equisolid: the sensor after sensor fit (mm)
+    float m_pano_box[4] = {0.f, 1.f, 0.f, 1.f};     // frame fraction of raster 0 and W (x), 0 and H (y)
     int m_width = 0, m_height = 0;
     float m_left = -1, m_right = 1, m_bottom = -1, m_top = 1;  // viewplane
     float m_tan_half_fov = 1.f;                                 // perspective scale of the viewplane

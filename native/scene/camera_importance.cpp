@@ -33,11 +33,55 @@
 // Clipping is along the view axis, as generate_ray's tmin and tmax: a point is reachable iff its depth (from the
 // lens plane, perspective; from the camera's plane z = 0 for orthographic, whose rays start at clip_start) lies in
 // [clip_start, clip_end].
+#include <cctype>
 #include <cmath>
+#include <string>
 
 #include "scene/camera.h"
 
 namespace candela {
+
+std::string Camera::panorama_label(const std::string& type) {
+    std::string label;
+    bool word_start = true;
+    for (char c : type) {
+        if (c == '_') {
+            label += ' ';
+            word_start = true;
+        } else {
+            label += word_start ? c : char(std::tolower(static_cast<unsigned char>(c)));
+            word_start = false;
+        }
+    }
+    return label;
+}
+
+std::string Camera::panoramic_not_connectable_message(const std::string& type) {
+    return "the panoramic camera (" + panorama_label(type) +
+           ") is not supported: light-tracing connections (t = 1) go to a perspective or orthographic lens (they "
+           "invert its viewplane projection, which a panorama does not have); use PATH for panoramas";
+}
+
+std::string Camera::panorama_type_name() const {
+    switch (m_pano) {
+        case Panorama::Equirectangular: return "EQUIRECTANGULAR";
+        case Panorama::FisheyeEquidistant: return "FISHEYE_EQUIDISTANT";
+        case Panorama::FisheyeEquisolid: return "FISHEYE_EQUISOLID";
+        default: return std::string();
+    }
+}
+
+std::string Camera::not_connectable_kind() const {
+    if (connectable()) return std::string();
+    if (!is_panoramic()) return "the orthographic camera without depth of field";
+    return "the panoramic camera (" + panorama_label(panorama_type_name()) + ")";
+}
+
+std::string Camera::not_connectable_message() const {
+    if (connectable()) return std::string();
+    if (!is_panoramic()) return k_not_connectable_message;
+    return panoramic_not_connectable_message(panorama_type_name());
+}
 
 float Camera::image_plane_area() const {
     const float a = (m_right - m_left) * (m_top - m_bottom);
@@ -67,6 +111,7 @@ bool Camera::to_lens_plane(const Ray& ray, Vec3* o_cam, Vec3* d_cam) const {
 }
 
 bool Camera::raster_of(const Ray& camera_ray, Vec2* raster, float margin) const {
+    if (is_panoramic()) return false;  // no viewplane to invert (connectable() is false)
     Vec3 o, d;
     if (!to_lens_plane(camera_ray, &o, &d)) return false;
     // The ray's point on the plane of focus (f ahead of the lens or clip plane) is the pinhole ray's point there.
@@ -87,6 +132,12 @@ void Camera::pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir, float
     Vec3 o, d;
     Vec2 raster;
     const bool dof = has_aperture();
+    if (is_panoramic()) {
+        // Rays start at the camera's position (a delta, as a pinhole's); the direction density of the projection
+        // is not implemented: 0, and connectable() is false so no strategy needs it.
+        *pdf_pos = 1.f;
+        return;
+    }
     if (m_ortho) {
         *pdf_pos = 1.f / image_plane_area();
         // A pinhole orthographic camera's direction is a delta: no density (connectable() is false).

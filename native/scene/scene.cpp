@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "bsdf/material_inputs.h"
 #include "input/scene_arrays.h"
+#include "scene/mesh_bvh_cache.h"
 #include "scene/scene_parts.h"
 
 namespace candela {
@@ -42,8 +43,9 @@ uint32_t closure_flags(ClosureType type) {
 
 }  // namespace
 
-Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel)
-    : m_device(params.get<int>("threads", 0)), m_camera(params, camera_matrix(arrays)) {
+Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel, MeshBvhCache* cache)
+    : m_device(cache ? cache->device() : std::make_shared<EmbreeDevice>(params.get<int>("threads", 0))),
+      m_camera(params, camera_matrix(arrays)) {
     m_offset = -m_camera.position();
     m_camera.translate(m_offset);
     m_materials = load_materials(arrays);
@@ -65,7 +67,13 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
             if (mat[i] < m_materials.size() && m_materials[mat[i]].inputs >= 0)
                 m_material_flags[mat[i]] |= closure_flags(ClosureType(type[i]));
     }
-    build(arrays, cancel);
+    build(arrays, cancel, cache);
+}
+
+void Scene::set_camera(const Params& params, const Affine& camera_to_world) {
+    Camera camera(params, camera_to_world);
+    camera.translate(m_offset);  // into the camera-world space the scene was built in
+    m_camera = camera;
 }
 
 Scene::~Scene() = default;

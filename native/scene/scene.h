@@ -7,6 +7,7 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "bsdf/material.h"
@@ -15,7 +16,9 @@
 #include "core/params.h"
 #include "core/transform.h"
 #include "lights/light.h"
+#include "lights/emitter_set.h"
 #include "lights/light_emission.h"
+#include "lights/light_sampler.h"
 #include "scene/camera.h"
 #include "scene/embree_device.h"
 #include "scene/ray_visibility.h"
@@ -25,6 +28,7 @@
 namespace candela {
 
 class SceneArrays;
+class MeshBvhCache;
 
 struct SceneStats {
     size_t unique_triangles = 0;    // stored once each
@@ -52,7 +56,10 @@ class Scene : private EmissionSource {
 public:
     /// Builds the scene; throws InvalidScene/InvalidParameter for bad input and Cancelled if `cancel`
     /// fires during the BVH build. `arrays` must have been validated.
-    Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel);
+    /// With a `cache` (the 3D viewport), every mesh is instanced and the meshes' object-space BVHs come from the
+    /// cache where it has them (scene/mesh_bvh_cache.h), so a build after a transform-only edit builds only the
+    /// top-level BVH; the scene then uses the cache's Embree device.
+    Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel, MeshBvhCache* cache = nullptr);
     ~Scene() override;
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
@@ -92,8 +99,19 @@ public:
     ShadingPoint shade(const SurfaceHit& hit, const Vec3& wo) const;
 
     const Camera& camera() const { return m_camera; }
+    /// Replaces the camera (camera params as the constructor reads them; camera_to_world rigid, in world space):
+    /// the viewport renders one built scene through many views and film sizes. Only while no integrator renders
+    /// this scene.
+    void set_camera(const Params& params, const Affine& camera_to_world);
     const std::vector<Material>& materials() const { return m_materials; }
     const LightSet& lights() const { return m_lights; }
+    /// What depends only on the scene, built on first use and kept while the scene lives (thread-safe; the same
+    /// object make_light_sampler(kind, lights()) and EmitterSet(lights(), bounds()) would build, so images do not
+    /// change): the viewport renders one scene through many views (set_camera) and coarse levels, and each render
+    /// would otherwise rebuild them for every level (the light tree is O(N log N) in the emitters, every
+    /// emissive triangle one). scene/scene_light_caches.cpp.
+    const LightSampler& light_sampler(LightSelection kind) const;
+    const EmitterSet& emitters() const;
     /// Half the diagonal of the bounds of the geometry and the point lights (what the lights are finalized with).
     float radius() const { return m_radius; }
     /// The bounding sphere of the geometry, area lights and point lights (camera-world space).
@@ -140,7 +158,7 @@ private:
     struct QueryContext;
     struct Builder;  // scene/scene_build.cpp
     friend struct Builder;
-    void build(const SceneArrays& arrays, const CancelToken* cancel);
+    void build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache);
     /// The SurfaceHit of Embree's hit (geometry, triangle, instance ids, barycentrics, unnormalised Ng) at
     /// distance t along `ray`.
     void decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t inst, float u, float v, const Vec3& ng_embree,
@@ -174,9 +192,9 @@ private:
     // EmissionSource: textured emitter `id` (a row of m_emitters).
     Color emission(uint32_t id, const Vec3& p, const Vec3& ng, float b1, float b2, const Vec3& wo) const override;
 
-    EmbreeDevice m_device;
+    std::shared_ptr<EmbreeDevice> m_device;  // own, or a MeshBvhCache's (declared first: released last)
     EmbreeScene m_top;
-    std::vector<EmbreeScene> m_mesh_scenes;  // one per instanced mesh
+    std::vector<std::shared_ptr<EmbreeScene>> m_mesh_scenes;  // one per instanced mesh (shared with a cache)
     std::vector<MeshShading> m_shading;      // per mesh (world space if flattened)
     std::vector<Placement> m_placements;     // per top-level geometry id
     struct Emitter {
@@ -200,6 +218,12 @@ private:
     SceneSphere m_bounds;
     std::vector<uint32_t> m_material_flags;  // per material: material_flags()
     SceneStats m_stats;
+    // light_sampler() and emitters(): built once each, on first use.
+    static constexpr size_t k_light_selections = size_t(LightSelection::Ward) + 1;
+    mutable std::once_flag m_light_sampler_once[k_light_selections];
+    mutable std::unique_ptr<LightSampler> m_light_samplers[k_light_selections];
+    mutable std::once_flag m_emitters_once;
+    mutable std::unique_ptr<EmitterSet> m_emitter_set;
 };
 
 }  // namespace candela

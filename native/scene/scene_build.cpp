@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "input/scene_arrays.h"
 #include "scene/coplanar_overlap.h"
+#include "scene/mesh_bvh_cache.h"
 #include "scene/scene.h"
 #include "scene/scene_parts.h"
 
@@ -33,6 +34,7 @@ struct Scene::Builder {
     Scene& scene;
     const SceneArrays& arrays;
     const CancelToken* cancel;
+    MeshBvhCache* cache;  // the viewport's: every mesh instanced, its BVH reused when the cache has it
     const float* positions;
     const uint32_t* triangles;
     const uint32_t* tri_material;
@@ -50,8 +52,8 @@ struct Scene::Builder {
     std::vector<int32_t> mesh_scene;       // index into m_mesh_scenes of an instanced mesh, −1 before it is built
     RTCSceneFlags scene_flags = RTC_SCENE_FLAG_NONE;
 
-    Builder(Scene& s, const SceneArrays& a, const CancelToken* c)
-        : scene(s), arrays(a), cancel(c), positions(a.get("positions").data<float>()),
+    Builder(Scene& s, const SceneArrays& a, const CancelToken* c, MeshBvhCache* bvh_cache)
+        : scene(s), arrays(a), cancel(c), cache(bvh_cache), positions(a.get("positions").data<float>()),
           triangles(a.get("triangles").data<uint32_t>()), tri_material(a.get("tri_material").data<uint32_t>()),
           smooth_arr(a.find("tri_smooth")), normals_arr(a.find("normals")), vertex_normals_arr(a.find("vertex_normals")),
           instance_mesh(a.get("instance_mesh").data<uint32_t>()), instance_xf(a.get("instance_transform").data<float>()),
@@ -154,14 +156,14 @@ struct Scene::Builder {
     /// |coordinate| of the mapped vertices. `coplanar`: the geometry gets the coplanar tie-break filter.
     RTCGeometry make_geometry(uint32_t m, const Affine& to_space, float* magnitude, bool coplanar) const {
         const MeshRange& r = ranges[m];
-        RTCGeometry g = rtcNewGeometry(scene.m_device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        RTCGeometry g = rtcNewGeometry(scene.m_device->get(), RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);  // the object's own BVH (see add_objects)
         const size_t nv = r.vert_end - r.vert_begin, nt = r.tri_end - r.tri_begin;
         auto* vb = static_cast<float*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
         auto* ib = static_cast<uint32_t*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), nt));
-        scene.m_device.check("allocating geometry buffers");
+        scene.m_device->check("allocating geometry buffers");
         for (size_t v = 0; v < nv; ++v) {
             const float* p = positions + 3 * (r.vert_begin + v);
             const Vec3 q = to_space.point(Vec3(p[0], p[1], p[2]));
@@ -243,34 +245,49 @@ struct Scene::Builder {
         place(id, pl, flags);
     }
 
-    /// The BVH of a mesh used by several instances, built once (object space).
+    /// The BVH of a mesh used by several instances (or any mesh, with a cache), built once (object space); with a
+    /// cache, taken from it when it holds a BVH of the same vertices, triangles and filters.
     RTCScene mesh_bvh(uint32_t m) {
         if (mesh_scene[m] < 0) {
             scene.m_shading[m] = make_shading(m, nullptr);
-            EmbreeScene s(rtcNewScene(scene.m_device.get()));
-            rtcSetSceneBuildQuality(s.get(), RTC_BUILD_QUALITY_HIGH);
-            rtcSetSceneFlags(s.get(), scene_flags);
-            rtcSetSceneProgressMonitorFunction(s.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
-            float unused = 0.f;
-            RTCGeometry g = make_geometry(m, Affine(), &unused, mesh_coplanar[m] != 0);
-            rtcAttachGeometry(s.get(), g);
-            rtcReleaseGeometry(g);
-            rtcCommitScene(s.get());
-            check_cancel();
-            scene.m_device.check("building a mesh BVH");
+            // What the BVH depends on besides the vertices and triangles: the filters set on it.
+            const uint32_t bvh_flags = uint32_t(scene_flags) << 1 | uint32_t(mesh_coplanar[m] != 0);
+            const MeshRange& r = ranges[m];
+            const MeshBvhCache::Key key =
+                cache ? MeshBvhCache::key(positions + 3 * size_t(r.vert_begin), r.vert_end - r.vert_begin,
+                                          triangles + 3 * size_t(r.tri_begin), r.tri_end - r.tri_begin, r.vert_begin,
+                                          bvh_flags)
+                      : MeshBvhCache::Key{};
+            std::shared_ptr<EmbreeScene> s = cache ? cache->find(key) : nullptr;
+            if (!s) {
+                s = std::make_shared<EmbreeScene>(rtcNewScene(scene.m_device->get()));
+                rtcSetSceneBuildQuality(s->get(), RTC_BUILD_QUALITY_HIGH);
+                rtcSetSceneFlags(s->get(), scene_flags);
+                rtcSetSceneProgressMonitorFunction(s->get(), &progress_monitor, const_cast<CancelToken*>(cancel));
+                float unused = 0.f;
+                RTCGeometry g = make_geometry(m, Affine(), &unused, mesh_coplanar[m] != 0);
+                rtcAttachGeometry(s->get(), g);
+                rtcReleaseGeometry(g);
+                rtcCommitScene(s->get());
+                // The cancel token belongs to this build: a kept BVH must not point at it.
+                rtcSetSceneProgressMonitorFunction(s->get(), nullptr, nullptr);
+                check_cancel();
+                scene.m_device->check("building a mesh BVH");
+                if (cache) cache->insert(key, s);
+            }
             mesh_scene[m] = static_cast<int32_t>(scene.m_mesh_scenes.size());
             scene.m_mesh_scenes.push_back(std::move(s));
             scene.m_stats.unique_triangles += ranges[m].tri_end - ranges[m].tri_begin;
             ++scene.m_stats.meshes;
         }
-        return scene.m_mesh_scenes[size_t(mesh_scene[m])].get();
+        return scene.m_mesh_scenes[size_t(mesh_scene[m])]->get();
     }
 
     /// An Embree instance of a shared mesh's BVH.
     void add_instance(Placement pl, const Affine& xf, uint8_t flags) {
         const uint32_t m = pl.mesh;
         const RTCScene bvh = mesh_bvh(m);
-        RTCGeometry inst = rtcNewGeometry(scene.m_device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+        RTCGeometry inst = rtcNewGeometry(scene.m_device->get(), RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(inst, bvh);
         rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &xf.m[0][0]);
         rtcCommitGeometry(inst);
@@ -301,7 +318,7 @@ struct Scene::Builder {
     /// on the Cornell box (8 objects, 32 triangles), equal on 400 small objects in it and on a 317k-triangle
     /// scene, with 3-5x faster builds (objects build separately).
     void add_objects() {
-        scene.m_top = EmbreeScene(rtcNewScene(scene.m_device.get()));
+        scene.m_top = EmbreeScene(rtcNewScene(scene.m_device->get()));
         rtcSetSceneBuildQuality(scene.m_top.get(), RTC_BUILD_QUALITY_LOW);  // two levels: a BVH per object, one over them
         rtcSetSceneFlags(scene.m_top.get(), scene_flags);
         rtcSetSceneProgressMonitorFunction(scene.m_top.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
@@ -323,12 +340,12 @@ struct Scene::Builder {
             pl.object_to_world = xf;
             pl.world_to_object = xf.inverse();
             scene.m_stats.instanced_triangles += ranges[m].tri_end - ranges[m].tri_begin;
-            if (uses[m] == 1) add_flattened(i, pl, xf, flags);
+            if (uses[m] == 1 && !cache) add_flattened(i, pl, xf, flags);
             else add_instance(pl, xf, flags);
         }
         rtcCommitScene(scene.m_top.get());
         check_cancel();
-        scene.m_device.check("building the scene BVH");
+        scene.m_device->check("building the scene BVH");
     }
 
     /// Blender's lights, the world, the bounds and the light set's finishing pass.
@@ -372,12 +389,12 @@ struct Scene::Builder {
             scene.m_stats.shading_bytes += s.material.capacity() * sizeof(uint32_t) + s.smooth.capacity() +
                                            s.normals.capacity() * sizeof(Vec3) + s.emissive_rank.capacity() * sizeof(int32_t);
         scene.m_stats.shading_bytes += scene.m_placements.capacity() * sizeof(Placement);
-        scene.m_stats.embree_bytes = size_t(std::max<int64_t>(scene.m_device.bytes(), 0));
+        scene.m_stats.embree_bytes = size_t(std::max<int64_t>(scene.m_device->bytes(), 0));
     }
 };
 
-void Scene::build(const SceneArrays& arrays, const CancelToken* cancel) {
-    Builder b(*this, arrays, cancel);
+void Scene::build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache) {
+    Builder b(*this, arrays, cancel, cache);
     b.find_mesh_ranges();
     b.find_filtered_objects();
     b.add_objects();

@@ -17,7 +17,7 @@ ObjectTriangles Scene::object_triangles(uint32_t object) const {
     if (object >= m_placements.size()) throw InternalError("object_triangles: no object " + std::to_string(object));
     const Placement& pl = m_placements[object];
     // A flattened mesh is top-level geometry `object`; an instance's triangles are geometry 0 of its shared BVH.
-    const RTCGeometry g = pl.instanced ? rtcGetGeometry(m_mesh_scenes[size_t(pl.mesh_scene)].get(), 0)
+    const RTCGeometry g = pl.instanced ? rtcGetGeometry(m_mesh_scenes[size_t(pl.mesh_scene)]->get(), 0)
                                        : rtcGetGeometry(m_top.get(), object);
     ObjectTriangles t;
     t.vertices = static_cast<const float*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));

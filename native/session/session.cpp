@@ -100,7 +100,8 @@ void Session::run() {
             m_phase = SessionPhase::Rendering;
             m_render_start = t1;
         }
-        if (scene.lights().empty()) m_log.add("the scene has no lights and a black world: the image is black");
+        if (scene.lights().empty() && is_black(scene.lights().background()))
+            m_log.add("the scene has no lights and a black world: the image is black");
         RenderContext ctx{m_cancel, m_counters, m_threads, m_aovs.get(), &m_log};
         m_integrator->render(scene, *m_film, ctx);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();

@@ -60,7 +60,7 @@ class FakeEngine:
             self.break_time = now
         return hit
 
-    def begin_result(self, x, y, w, h, layer=""):
+    def begin_result(self, x, y, w, h, layer="", view=""):
         self.results_begun += 1
         self.result = FakeResult(w, h)
         return self.result
@@ -68,7 +68,7 @@ class FakeEngine:
     def update_result(self, result):
         pass
 
-    def end_result(self, result, cancel=False):
+    def end_result(self, result, cancel=False, highlight=False, do_merge_results=False):
         assert result is self.result
         self.ended = True
 

@@ -12,7 +12,7 @@ import scenes
 
 
 def node_context(engine, shader_type):
-    space = SimpleNamespace(type='NODE_EDITOR', tree_type='ShaderNodeTree', shader_type=shader_type)
+    space = SimpleNamespace(type='NODE_EDITOR', tree_type='ShaderNodeTree', shader_type=shader_type, edit_tree=None)
     return SimpleNamespace(engine=engine, space_data=space)
 
 
@@ -30,11 +30,11 @@ def test_categories_register_with_the_addon_and_go_with_it():
     scenes.ensure_addon()
     from candela.ui import node_categories
     assert node_categories.MENU_ID in nodeitems_utils._node_categories
-    assert hasattr(bpy.types, "NODE_MT_category_CANDELA_SHADER_SHADER")
+    assert hasattr(bpy.types, "NODE_MT_category_CANDELA_SH_NEW_SHADER")
     addon_utils.disable("candela", default_set=True)
     try:
         assert node_categories.MENU_ID not in nodeitems_utils._node_categories
-        assert not hasattr(bpy.types, "NODE_MT_category_CANDELA_SHADER_SHADER")
+        assert not hasattr(bpy.types, "NODE_MT_category_CANDELA_SH_NEW_SHADER")
     finally:
         addon_utils.enable("candela", default_set=True)
     assert node_categories.MENU_ID in nodeitems_utils._node_categories

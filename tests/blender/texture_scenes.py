@@ -120,9 +120,10 @@ def environment_scene(directory, width=48, height=32, strength=1.5, rotation=Non
     return scene
 
 
-def render(scene, engine, samples, path, max_bounces=4):
+def render(scene, engine, samples, path, max_bounces=4, read=True):
     """Renders `scene` with `engine` (CYCLES: CPU, no denoising, no adaptive sampling, no clamping, box filter;
-    CANDELA: box filter) to an EXR at `path`; returns its (H, W, 4) linear pixels."""
+    CANDELA: box filter) to an EXR at `path`; returns its (H, W, 4) linear pixels (None with read=False: a stereo
+    render writes path_L.exr and path_R.exr instead)."""
     scene.render.engine = engine
     scene.render.image_settings.file_format = 'OPEN_EXR'
     scene.render.image_settings.color_depth = '32'   # full floats: half floats would round the comparisons
@@ -138,7 +139,7 @@ def render(scene, engine, samples, path, max_bounces=4):
         c = scene.candela
         c.samples, c.pixel_filter, c.filter_width, c.max_bounces = samples, 'BOX', 1.0, max_bounces
     bpy.ops.render.render(write_still=True)
-    return scenes.read_image_pixels(path)
+    return scenes.read_image_pixels(path) if read else None
 
 
 # ---- node semantics: an emission plane whose colour is a node chain over its UVs -------------------------------

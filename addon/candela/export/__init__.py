@@ -16,6 +16,7 @@ from .common import ExportError, Warnings
 from .geometry import GeometryTable
 from .lights import LightTable
 from .materials import MaterialTable
+from .mesh import read_mesh
 from .shader_tables import ShaderTables
 from .world import world_arrays
 
@@ -86,13 +87,17 @@ def name_objects(message, names):
     return re.sub(r"\binstance (\d+)\b", replace("instance"), message)
 
 
-def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None, names=None):
-    """Export the evaluated scene seen through `camera` (an original camera object, see render_camera)."""
+def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None, names=None, mesh_reader=None,
+                 camera_matrix=None, image_cache=None):
+    """Export the evaluated scene seen through `camera` (an original camera object, see render_camera), or from
+    `camera_matrix` (a 4x4 camera → world matrix: the 3D view's) when `camera` is None. `mesh_reader`: how
+    meshes are read (default export/mesh.py read_mesh; the viewport passes its cache's); `image_cache` a dict
+    keeping loaded image texels across exports (the viewport's)."""
     warnings = warnings if warnings is not None else Warnings()
     scene = depsgraph.scene
-    tables = ShaderTables(warnings)
+    tables = ShaderTables(warnings, image_cache)
     materials = MaterialTable(warnings, tables)
-    geometry = GeometryTable(materials)
+    geometry = GeometryTable(materials, read=mesh_reader or read_mesh)
     lights = LightTable(warnings)
     bits = schema.instance_flags()
     view_layer = _original_view_layer(depsgraph)
@@ -115,15 +120,26 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
         elif inst.show_self:
             geometry.add(ob, matrix, flags=object_flags(inst, view_layer, bits), pass_index=ob.pass_index)
 
-    if geometry.triangle_count == 0:
-        raise ExportError(f"scene '{scene.name}' has nothing to render: no visible mesh triangles")
+    world = world_arrays(scene.world, warnings, tables)
+    if geometry.triangle_count == 0 and not lights.rows and not _world_emits(world):
+        # Cycles renders black here; an error says why (every object hidden, an empty file) instead.
+        raise ExportError(f"scene '{scene.name}' has nothing to render: no visible mesh triangles, no lights "
+                          "and a black world")
 
     if names is not None:
         names.update(geometry.names())
     arrays = geometry.arrays()
     arrays.update(materials.arrays())
     arrays.update(lights.arrays())
-    arrays["camera_to_world"] = camera_to_world(camera.original.evaluated_get(depsgraph).matrix_world)
-    arrays.update(world_arrays(scene.world, warnings, tables))
+    if camera is not None:
+        camera_matrix = camera.original.evaluated_get(depsgraph).matrix_world
+    arrays["camera_to_world"] = camera_to_world(camera_matrix)
+    arrays.update(world)
     arrays.update(tables.arrays())   # after every material and the world: the programs and their bindings
     return arrays
+
+
+def _world_emits(world):
+    """A world program (an HDRI, a texture) or a non-black constant colour."""
+    color = world.get("world_color")
+    return color is None or bool(np.any(np.asarray(color) > 0.0))

@@ -12,8 +12,11 @@ from .mesh import read_mesh
 
 
 class GeometryTable:
-    def __init__(self, materials):
+    def __init__(self, materials, read=read_mesh):
+        """`read(ob, uses, warnings)` reads one evaluated object's triangles (export/mesh.py read_mesh; the
+        viewport passes its cache's reader)."""
         self.materials = materials
+        self.read = read
         self.meshes = []            # (MeshData, tri_material uint32)
         self._by_key = {}           # dedup key → mesh index, or -1 for objects without faces
         self.instance_mesh = []
@@ -53,7 +56,7 @@ class GeometryTable:
     def _add_mesh(self, ob, slots):
         rows = np.array([self.materials.row_of(m) for m in slots] or [self.materials.row_of(None)], np.uint32)
         uses = frozenset().union(*(self.materials.uses(int(r)) for r in rows))
-        data = read_mesh(ob, uses, self.materials.warnings)
+        data = self.read(ob, uses, self.materials.warnings)
         if data is None:
             return -1
         # Out-of-range indices (slots removed after assignment) clamp to the last slot, as Blender draws them.
@@ -76,6 +79,10 @@ class GeometryTable:
         return sum(len(d.triangles) for d, _ in self.meshes)
 
     def arrays(self):
+        if not self.meshes:   # a world-only scene: no triangles at all
+            return {"positions": np.zeros((0, 3), np.float32), "triangles": np.zeros((0, 3), np.uint32),
+                    "tri_material": np.zeros(0, np.uint32), "mesh_tri_start": np.zeros(1, np.uint32),
+                    "instance_mesh": np.zeros(0, np.uint32), "instance_transform": np.zeros((0, 4, 4), np.float32)}
         datas = [d for d, _ in self.meshes]
         vertex_counts = np.array([len(d.positions) for d in datas], np.int64)
         tri_counts = np.array([len(d.triangles) for d in datas], np.int64)

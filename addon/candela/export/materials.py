@@ -25,7 +25,7 @@ DEFAULT_BASE = (0.8, 0.8, 0.8)   # no material at all: Blender's default grey
 SUPPORTED_SHADER_NODES = ("ShaderNodeAddShader", "ShaderNodeBsdfAnisotropic", "ShaderNodeBsdfDiffuse",
                           "ShaderNodeBsdfGlass", "ShaderNodeBsdfGlossy", "ShaderNodeBsdfPrincipled",
                           "ShaderNodeBsdfRefraction", "ShaderNodeBsdfTranslucent", "ShaderNodeBsdfTransparent",
-                          "ShaderNodeEmission", "ShaderNodeMixShader")
+                          "ShaderNodeEmission", "ShaderNodeHoldout", "ShaderNodeMixShader")
 COLOR_GROUPS = ("weight", "color", "subsurface")   # closure values spread over the columns NAME_r, NAME_g, NAME_b
 PLACEHOLDER = {"ior": 1.45}   # row value under a bound (varying) column; must pass the native row checks
 
@@ -94,9 +94,8 @@ class _Reader:
         socket = output.inputs.get("Displacement")
         if socket is None or not socket.is_linked:
             return
-        method = getattr(getattr(self.material, "cycles", None), "displacement_method", "BUMP")
-        if method != "BUMP":
-            self.warn(f"displacement method {method} is rendered as bump mapping only")
+        # True displacement (a method other than Bump Only) is rendered as bump too: unsupported.py says so, once
+        # per render with the settings Candela ignores.
         normal = self.nodes.displacement_bump(socket)
         if normal is None:
             return

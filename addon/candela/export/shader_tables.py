@@ -13,6 +13,14 @@ import numpy as np
 from .. import schema
 
 
+def image_key(image):
+    """What a loaded image's texels depend on: which image (its data block), its size, source and colour space
+    setting. Edits of its pixels (painting, reloading) arrive as depsgraph updates of the image, which drop its
+    entries (viewport/scene_sync.py)."""
+    return (image.name, image.as_pointer(), tuple(image.size), image.source, image.colorspace_settings.name,
+            image.filepath_raw)
+
+
 class Reg:
     """A register of the program being built (its index within the program)."""
     __slots__ = ("index",)
@@ -101,8 +109,12 @@ _FOLD = {
 
 
 class ShaderTables:
-    def __init__(self, warnings):
+    def __init__(self, warnings, image_cache=None):
+        """`image_cache`: a dict kept across exports (the viewport's) from an image's key to its loaded texels,
+        so images are read from Blender once, not on every export (ImageCache.key says when one must be read
+        again)."""
         self.warnings = warnings
+        self.image_cache = image_cache
         self._enums = {}
         self.texel_chunks = {"FLOAT": [], "BYTE": []}   # (N, 4) float32 / uint8 arrays per pool
         self.texel_count = {"FLOAT": 0, "BYTE": 0}
@@ -154,9 +166,28 @@ class ShaderTables:
         return index
 
     def _load_image(self, image):
+        if self.image_cache is None:
+            return self._add_texels(*self._read_image(image))
+        key = image_key(image)
+        entry = self.image_cache.get(key)
+        if entry is None:
+            entry = self.image_cache[key] = self._read_image(image)
+        return self._add_texels(*entry)
+
+    def _add_texels(self, texels, storage, width, height, color_space):
+        if texels is None:
+            return None
+        self.texture_info.append([self.texel_count[storage], width, height, self.enum("tex_color_spaces")[color_space],
+                                  self.enum("tex_storages")[storage]])
+        self.texel_chunks[storage].append(texels)
+        self.texel_count[storage] += width * height
+        return len(self.texture_info) - 1
+
+    def _read_image(self, image):
+        """(texels, storage, width, height, colour space) of a Blender image; texels None if it has no pixels."""
         width, height = (int(v) for v in image.size)   # reading the size loads the image if it can
         if width <= 0 or height <= 0 or not image.has_data:
-            return None
+            return None, "FLOAT", 0, 0, "LINEAR"
         if image.source == 'TILED':
             self.warnings.add(f"Candela: image '{image.name}' is tiled (UDIM); only its first tile is used")
         channels = int(image.channels)
@@ -183,12 +214,7 @@ class ShaderTables:
             np.add(rgba, 0.5, out=rgba)
             np.clip(rgba, 0.0, 255.0, out=rgba)
             texels = rgba.astype(np.uint8)
-        self.texture_info.append([self.texel_count[storage], width, height,
-                                  self.enum("tex_color_spaces")[self._color_space(image)],
-                                  self.enum("tex_storages")[storage]])
-        self.texel_chunks[storage].append(texels)
-        self.texel_count[storage] += width * height
-        return len(self.texture_info) - 1
+        return texels, storage, width, height, self._color_space(image)
 
     def _color_space(self, image):
         """LINEAR or SRGB (decode after filtering). Float buffers are scene-linear already (Blender converts them

@@ -2,9 +2,10 @@
 
 import bpy
 
-from . import compat, light, node_categories, render, surfaces, view_layer, visibility
+from . import compat, light, node_categories, presets, render, surfaces, view_layer, visibility
 
-classes = render.classes + light.classes + surfaces.classes + view_layer.classes + visibility.classes
+classes = (render.classes + light.classes + surfaces.classes + view_layer.classes + visibility.classes +
+           presets.classes)
 
 
 def register():
@@ -12,9 +13,11 @@ def register():
         bpy.utils.register_class(cls)
     compat.register()
     node_categories.register()
+    presets.register()
 
 
 def unregister():
+    presets.unregister()
     node_categories.unregister()
     compat.unregister()
     for cls in reversed(classes):

@@ -9,12 +9,16 @@ import bpy
 ENGINE = "CANDELA"
 EXCLUDE = {
     "DATA_PT_light",            # type selector only: CANDELA_LIGHT_PT_light draws type + colour + power
-    "DATA_PT_preview",          # no material/light previews yet (bl_use_preview = False)
+    "DATA_PT_spot",             # hangs off EEVEE's light panel: CANDELA_LIGHT_PT_spot draws it under Candela's
+    "DATA_PT_area",             # registered before Candela's light panel, so drawn above it: drawn inside it instead
     "RENDER_PT_freestyle",      # no Freestyle support
     "MATERIAL_PT_freestyle_line",
 }
-EXCLUDE_PREFIXES = ("VIEWLAYER_PT_freestyle", "DATA_PT_lightprobe", "DATA_PT_context_lightprobe")
+# Simplify (and its sub-panels) is registered before Candela's Sampling panel and would be drawn above it:
+# CANDELA_RENDER_PT_simplify draws the same settings after Sampling.
+EXCLUDE_PREFIXES = ("VIEWLAYER_PT_freestyle", "DATA_PT_lightprobe", "DATA_PT_context_lightprobe", "RENDER_PT_simplify")
 EXTRA = ("EEVEE_MATERIAL_PT_context_material",   # the material slot list
+         "MATERIAL_PT_preview",                  # the material preview (Candela renders it: bl_use_preview)
          "DATA_PT_camera_dof", "DATA_PT_camera_dof_aperture")   # depth of field: focus, f-stop, blades, ratio
 
 _added = []   # panels we changed, so unregister undoes exactly that

@@ -1,5 +1,6 @@
 """Render-tab panels: Sampling, the chosen integrator's settings (sub-panels generated from the settings the native
-registry publishes: one per group, "Light Paths" and "Light Sampling" for PATH), Film."""
+registry publishes: one per group, "Light Paths" and "Light Sampling" for PATH) after its Viewport sub-panel, Film,
+Simplify (after Sampling, as in Cycles)."""
 
 import bpy
 
@@ -27,6 +28,22 @@ class CANDELA_RENDER_PT_sampling(CandelaPanel, bpy.types.Panel):
         row.prop(settings, "use_animated_seed", text="", icon='TIME')
 
 
+class CANDELA_RENDER_PT_sampling_viewport(CandelaPanel, bpy.types.Panel):
+    bl_context = "render"
+    bl_label = "Viewport"
+    bl_parent_id = "CANDELA_RENDER_PT_sampling"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.candela
+        col = layout.column()
+        col.prop(settings, "viewport_samples", text="Samples")
+        col.prop(settings, "viewport_start_resolution")
+        col.prop(context.scene.render, "preview_pixel_size", text="Pixel Size")
+
+
 class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
     bl_context = "render"
     bl_label = "Film"
@@ -43,6 +60,30 @@ class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
         sub.active = settings.pixel_filter != 'BOX'
         sub.prop(settings, "filter_width", text="Width")
         col.prop(context.scene.render, "film_transparent", text="Transparent")
+
+
+class CANDELA_RENDER_PT_simplify(CandelaPanel, bpy.types.Panel):
+    """Blender's Simplify settings (subdivision and child particles are applied by Blender's evaluation, which
+    Candela renders), drawn after Sampling like Cycles' (Blender's own panel would come first: ui/compat.py)."""
+    bl_context = "render"
+    bl_label = "Simplify"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.render, "use_simplify", text="")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        rd = context.scene.render
+        layout.active = rd.use_simplify
+        col = layout.column(heading="Viewport")
+        col.prop(rd, "simplify_subdivision", text="Max Subdivision")
+        col.prop(rd, "simplify_child_particles", text="Child Particles")
+        col = layout.column(heading="Render")
+        col.prop(rd, "simplify_subdivision_render", text="Max Subdivision")
+        col.prop(rd, "simplify_child_particles_render", text="Child Particles")
 
 
 def condition_holds(settings, condition):
@@ -110,4 +151,5 @@ def settings_panels():
     return tuple(panels)
 
 
-classes = (CANDELA_RENDER_PT_sampling,) + settings_panels() + (CANDELA_RENDER_PT_film,)
+classes = ((CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_sampling_viewport) + settings_panels() +
+           (CANDELA_RENDER_PT_film, CANDELA_RENDER_PT_simplify))

@@ -43,4 +43,18 @@ class CANDELA_WORLD_PT_surface(CandelaPanel, bpy.types.Panel):
         _draw_output(self.layout, context.world, "color")
 
 
-classes = (CANDELA_MATERIAL_PT_surface, CANDELA_WORLD_PT_surface)
+class CANDELA_WORLD_PT_preview(CandelaPanel, bpy.types.Panel):
+    """The world preview Candela renders (bl_use_preview); Blender has no engine-agnostic world preview panel."""
+    bl_context = "world"
+    bl_label = "Preview"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    @classmethod
+    def poll(cls, context):
+        return context.world is not None and super().poll(context)
+
+    def draw(self, context):
+        self.layout.template_preview(context.world)
+
+
+classes = (CANDELA_WORLD_PT_preview, CANDELA_MATERIAL_PT_surface, CANDELA_WORLD_PT_surface)

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <optional>
+#include <string>
 
+#include "core/error.h"
 #include "core/parallel_ordered.h"
 #include "film/aov_film.h"
 #include "integrators/bdpt/bdpt_tracer.h"
@@ -18,18 +20,33 @@ void publish_strategy_images(const StrategyImages& strategies, RenderContext& ct
     for (auto& [name, rgb] : strategies.images()) ctx.aovs->set_pass(name, std::move(rgb));
 }
 
+/// Throws for a panoramic camera, before the scene is built: the t = 1 strategies connect vertices to the lens,
+/// and the camera vertex's stored densities come from pdf_we; Camera::connect, raster_of and pdf_we invert a
+/// perspective or orthographic viewplane and are not derived for a panorama. Refused by name rather than rendered
+/// with t = 1 dropped (as for the orthographic pinhole): that variant has no agreement test for a panorama.
+void check_camera(const Params& params) {
+    if (params.get<std::string>("camera_type", "PERSP") == "PANO")
+        throw InvalidParameter("integrator BDPT: " + Camera::panoramic_not_connectable_message(
+                                   params.get<std::string>("panorama_type", "FISHEYE_EQUISOLID")));
+}
+
 class BdptIntegrator final : public Integrator {
 public:
-    explicit BdptIntegrator(const Params& params) : m_settings(BdptSettings::from_params(params)) {}
+    explicit BdptIntegrator(const Params& params) : m_settings(BdptSettings::from_params(params)) {
+        check_camera(params);
+    }
 
     void render(const Scene& scene, Film& film, RenderContext& ctx) override {
-        const EmitterSet emitters(scene.lights(), scene.bounds());
+        // The params were checked; a scene whose camera was replaced since (Scene::set_camera) is checked here.
+        if (scene.camera().is_panoramic())
+            throw InvalidParameter("integrator BDPT: " + scene.camera().not_connectable_message());
+        const EmitterSet& emitters = scene.emitters();
         if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
             ctx.log("BDPT: objects hidden from diffuse, glossy or transmission rays are visible to light subpaths and "
                     "connections (only camera and shadow visibility are honoured)");
         if (!scene.camera().connectable())
-            ctx.log("BDPT: the orthographic camera without depth of field has no light-tracing strategy (t = 1): "
-                    "the other strategies render the image");
+            ctx.log("BDPT: " + scene.camera().not_connectable_kind() +
+                    " has no light-tracing strategy (t = 1): the other strategies render the image");
         const BdptTracer tracer(scene, m_settings, emitters);
         std::optional<StrategyImages> strategies;
         if (m_settings.strategy_images)

@@ -12,12 +12,17 @@ namespace candela {
 
 namespace {
 
-/// Throws if the camera has no light-tracing strategy (an orthographic camera without depth of field receives
-/// light from one direction only: no light path can connect to it).
+/// Throws if the camera has no light-tracing strategy, before the scene is built: an orthographic camera without
+/// depth of field receives light from one direction only (no light path can connect to it), and a panoramic
+/// camera's projection has no inverse in Camera::connect (Camera::connectable()).
 void check_camera(const Params& params) {
-    if (params.get<std::string>("camera_type", "PERSP") == "ORTHO" && !params.get<bool>("use_dof", false))
+    const std::string type = params.get<std::string>("camera_type", "PERSP");
+    if (type == "ORTHO" && !params.get<bool>("use_dof", false))
         throw InvalidParameter("integrator LIGHT: the orthographic camera without depth of field has no light-tracing "
                                "strategy (no light path can reach it); use PATH or BDPT, or enable depth of field");
+    if (type == "PANO")
+        throw InvalidParameter("integrator LIGHT: " + Camera::panoramic_not_connectable_message(
+                                   params.get<std::string>("panorama_type", "FISHEYE_EQUISOLID")));
 }
 
 class LightIntegrator final : public Integrator {
@@ -27,7 +32,10 @@ public:
     }
 
     void render(const Scene& scene, Film& film, RenderContext& ctx) override {
-        const EmitterSet emitters(scene.lights(), scene.bounds());
+        // The params were checked; a scene whose camera was replaced since (Scene::set_camera) is checked here.
+        if (!scene.camera().connectable())
+            throw InvalidParameter("integrator LIGHT: " + scene.camera().not_connectable_message());
+        const EmitterSet& emitters = scene.emitters();
         if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
             ctx.log("LIGHT: objects hidden from diffuse, glossy or transmission rays are visible to light paths "
                     "(only camera and shadow visibility are honoured)");

@@ -1,5 +1,8 @@
 #include "integrators/mlt/mlt_integrator.h"
 
+#include "core/error.h"
+#include "scene/camera.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -73,7 +76,13 @@ MltBootstrap summarise(const Bootstrap& boot, int bootstrap_paths) {
 class MltIntegrator final : public Integrator {
 public:
     MltIntegrator(const Params& params, bool multiplexed)
-        : m_settings(MltSettings::from_params(params, multiplexed)), m_multiplexed(multiplexed) {}
+        : m_settings(MltSettings::from_params(params, multiplexed)), m_multiplexed(multiplexed) {
+        // The chains run BDPT's strategies, whose t = 1 connections invert a perspective or orthographic viewplane.
+        if (params.get<std::string>("camera_type", "PERSP") == "PANO")
+            throw InvalidParameter(std::string("integrator ") + (multiplexed ? "MMLT" : "MLT") + ": " +
+                                   Camera::panoramic_not_connectable_message(
+                                       params.get<std::string>("panorama_type", "FISHEYE_EQUISOLID")));
+    }
 
     void render(const Scene& scene, Film& film, RenderContext& ctx) override {
         const char* name = m_multiplexed ? "MMLT" : "MLT";

@@ -13,7 +13,8 @@ public:
     explicit PathIntegrator(const Params& params) : m_settings(PathSettings::from_params(params)) {}
 
     void render(const Scene& scene, Film& film, RenderContext& ctx) override {
-        const LightSampler light_sampler = make_light_sampler(m_settings.light_selection, scene.lights());
+        // The scene keeps its light samplers: a viewport restart (a new view, a coarse level) reuses the light tree.
+        const LightSampler& light_sampler = scene.light_sampler(parse_light_selection(m_settings.light_selection));
         const PathTracer tracer(scene, m_settings, light_sampler);
         render_camera_progressive(scene, film, ctx, m_settings.pixel, tracer);
     }

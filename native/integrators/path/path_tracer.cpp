@@ -54,6 +54,7 @@ inline __attribute__((always_inline)) void clamp_contribution(Color& c, float cl
 Color PathTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov) const {
     Color L(0.f);
     *alpha = 1.f;
+    if (!(camera_ray.tmax > camera_ray.tmin)) return L;  // outside a fisheye's image circle: nothing (Cycles)
     PathState st;
     st.aov = aov;
     std::visit([&](auto& concrete) { trace(camera_ray, st, 0, concrete, stats, L, alpha); }, sampler);
@@ -64,6 +65,7 @@ Color PathTracer::Li(const Ray& camera_ray, const TracedHit& first, Sampler& sam
                      AovSample* aov) const {
     Color L(0.f);
     *alpha = 1.f;
+    if (!(camera_ray.tmax > camera_ray.tmin)) return L;  // outside a fisheye's image circle: nothing (Cycles)
     PathState st;
     st.aov = aov;
     std::visit([&](auto& concrete) { trace(camera_ray, st, 0, concrete, stats, L, alpha, &first); }, sampler);
