@@ -100,6 +100,17 @@ void Camera::translate(const Vec3& offset) {
     for (int r = 0; r < 3; ++r) m_to_world.m[r][3] += offset[r];
 }
 
+Vec2 Camera::world_to_raster(const Vec3& p) const {
+    const Vec3 q = m_to_world.inverse().point(p);  // camera space: looking down −Z
+    float sx = q.x, sy = q.y;
+    if (!m_ortho) {
+        const float depth = std::fmax(-q.z, 1e-30f);
+        sx = q.x / (depth * m_tan_half_fov);
+        sy = q.y / (depth * m_tan_half_fov);
+    }
+    return {(sx - m_left) / m_raster_to_x, (sy - m_bottom) / m_raster_to_y};
+}
+
 Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {
     const float sx = m_left + raster.x * m_raster_to_x;
     const float sy = m_bottom + raster.y * m_raster_to_y;

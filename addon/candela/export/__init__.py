@@ -13,7 +13,7 @@ import numpy as np
 from .. import schema
 from .camera import camera_to_world, render_camera
 from .common import ExportError, Warnings
-from .geometry import GeometryTable
+from .geometry import GeometryTable, random_from_id
 from .lights import LightTable
 from .materials import MaterialTable
 from .shader_tables import ShaderTables
@@ -113,7 +113,9 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
         if ob.type == 'LIGHT':
             lights.add(ob.data, matrix, visible_camera=ob.visible_camera)
         elif inst.show_self:
-            geometry.add(ob, matrix, flags=object_flags(inst, view_layer, bits), pass_index=ob.pass_index)
+            random = random_from_id(inst.random_id) if inst.is_instance else None
+            geometry.add(ob, matrix, flags=object_flags(inst, view_layer, bits), pass_index=ob.pass_index,
+                         random=random)
 
     if geometry.triangle_count == 0:
         raise ExportError(f"scene '{scene.name}' has nothing to render: no visible mesh triangles")
