@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "core/math.h"
+#include "integrators/common/surface_vertex.h"
 #include "lights/light_sample.h"
 #include "scene/ray_offset.h"
 #include "scene/scene.h"
@@ -34,6 +35,37 @@ inline bool shadow_ray_blocked(const Scene& scene, const SurfaceHit& hit, const 
     const Vec3 to_light = (hit.p + ls.wi * ls.dist) - origin;
     if (!(length_squared(to_light) > 0.f)) return false;
     return scene.occluded(origin, to_light, 1.f - k_shadow_epsilon, hit.primitive);
+}
+
+/// How a shadow ray treats transparent surfaces (Cycles' transparent shadows): the Light Path inputs it is shaded
+/// with and how many Transparent surfaces it may cross (the path's remaining transparent bounces).
+struct ShadowRayInputs {
+    LightPathInfo path;
+    int max_surfaces = 0;
+};
+
+/// What of light sample `ls` reaches `hit` (origin as for shadow_ray_blocked): 1 or 0 without transparent
+/// materials (exactly shadow_ray_blocked), else the product of the Transparent weights of the surfaces crossed
+/// (Scene::transmittance).
+inline Color shadow_ray_transmittance(const Scene& scene, const SurfaceHit& hit, const Vec3& origin,
+                                      const LightSample& ls, const ShadowRayInputs& in) {
+    if (!scene.has_transparent_materials()) return shadow_ray_blocked(scene, hit, origin, ls) ? Color(0.f) : Color(1.f);
+    if (!std::isfinite(ls.dist)) return scene.transmittance(origin, ls.wi, true, hit.primitive, in.path, in.max_surfaces);
+    // The same end margin as shadow_ray_blocked: the segment stops (1 − ε) of the way to the light point.
+    const Vec3 light_point = hit.p + ls.wi * ls.dist;
+    const Vec3 end = origin + (light_point - origin) * (1.f - k_shadow_epsilon);
+    if (!(length_squared(light_point - origin) > 0.f)) return Color(1.f);
+    return scene.transmittance(origin, end, false, hit.primitive, in.path, in.max_surfaces);
+}
+
+/// The shadow-ray origin at `hit` for a light in direction wl leaving on the front (ng's side) or the back:
+/// spawn's offset origin, or with a shadow terminator offset (Scene::terminator_point) the lifted point's.
+inline Vec3 shadow_ray_origin(const Scene& scene, const SurfaceHit& hit, const Vec3& ns_side, const Vec3& ng_side,
+                              const Vec3& wl, bool front, SpawnPoints& spawn) {
+    if (!scene.has_terminator_offsets()) return spawn.origin(front);
+    const Vec3 ng = front ? ng_side : -ng_side;
+    const Vec3 p = scene.terminator_point(hit, front ? ns_side : -ns_side, ng, wl);
+    return (p.x == hit.p.x && p.y == hit.p.y && p.z == hit.p.z) ? spawn.origin(front) : offset_ray_origin(p, ng);
 }
 
 }  // namespace candela

@@ -35,7 +35,7 @@ uint32_t closure_flags(ClosureType type) {
         case ClosureType::Glossy: return R | G | S;
         case ClosureType::Glass: return R | T | G | S;
         case ClosureType::Refraction: return T | G | S;
-        case ClosureType::Transparent: return T | S;
+        case ClosureType::Transparent: return T | S | k_bsdf_transparent;
         default: return R | T | D | G | S;  // Principled: every lobe
     }
 }
@@ -65,6 +65,7 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
             if (mat[i] < m_materials.size() && m_materials[mat[i]].inputs >= 0)
                 m_material_flags[mat[i]] |= closure_flags(ClosureType(type[i]));
     }
+    for (uint32_t f : m_material_flags) m_any_transparent |= (f & k_bsdf_transparent) != 0;
     build(arrays, cancel);
 }
 

@@ -75,11 +75,14 @@ struct DirectLightSample {
 /// Next-event estimation of light `li` (selected with probability pmf) at vertex v for a path of throughput beta
 /// arriving from wo_local. `continuation_pdf(wi_local)` is the density of the integrator's continuation strategy
 /// (for MIS); `rays` counts the shadow ray.
+/// `shadow`: transparent shadows (shadow rays through Transparent surfaces, shaded with its Light Path inputs);
+/// null: every surface blocks. Objects with a shadow terminator offset start their shadow rays from the lifted
+/// point (shadow_ray_origin).
 template <class ContinuationPdf>
 inline __attribute__((always_inline)) DirectLightSample sample_direct_light(
     const Scene& scene, const DirectLightRules& rules, const SurfaceHit& hit, const SurfaceVertex& v, SpawnPoints& spawn,
     const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local, const Color& beta, uint32_t li, float pmf,
-    Vec2 u, ContinuationPdf&& continuation_pdf, uint64_t& rays) {
+    Vec2 u, ContinuationPdf&& continuation_pdf, uint64_t& rays, const ShadowRayInputs* shadow = nullptr) {
     DirectLightSample out;
     const LightSample ls = light_sample_li(scene.lights()[li], ctx, u, rules.light_pdf);
     if (!ls.valid() || (rules.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return out;
@@ -90,14 +93,22 @@ inline __attribute__((always_inline)) DirectLightSample sample_direct_light(
     const Color f = bsdf.f(wo_local, wi_local) * std::fabs(wi_local.z);
     if (is_black(f)) return out;
     ++rays;
-    if (shadow_ray_blocked(scene, hit, spawn.origin(cos_g > 0.f), ls)) return out;
+    const Vec3 origin = shadow_ray_origin(scene, hit, v.backfacing ? -hit.ns : hit.ns, v.ng, ls.wi, cos_g > 0.f, spawn);
+    Color through(1.f);
+    if (shadow && scene.has_transparent_materials()) {
+        through = shadow_ray_transmittance(scene, hit, origin, ls, *shadow);
+        if (is_black(through)) return out;
+    } else if (shadow_ray_blocked(scene, hit, origin, ls)) {
+        return out;
+    }
     const int k = rules.light_samples;
     const float density = float(k) * pmf * ls.pdf;
     float w = 1.f;
     if (!ls.is_delta && rules.light_sampling == LightSampling::Mis)
         w = mis_weight(rules.mis_heuristic, density, continuation_pdf(wi_local));
     out.contribution = beta * f * ls.Li * (w / density);
-    out.visible = double(luminance(ls.Li)) * std::fabs(wi_local.z) / (double(k) * double(ls.pdf));
+    if (shadow) out.contribution *= through;  // (exactly 1 without transparent materials)
+    out.visible = double(luminance(ls.Li * through)) * std::fabs(wi_local.z) / (double(k) * double(ls.pdf));
     return out;
 }
 

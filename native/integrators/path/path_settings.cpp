@@ -5,7 +5,8 @@
 namespace candela {
 
 const std::vector<ParamSpec>& PathSettings::specs() {
-    static const std::vector<ParamSpec> specs = {
+    static const std::vector<ParamSpec> specs = [] {
+        std::vector<ParamSpec> own = {
         int_param("max_bounces", "Max Bounces", 12, 0, 1024, "Maximum path length; 0 = direct light only",
                   "Light Paths"),
         enum_param("rr_mode", "Russian Roulette", "THROUGHPUT",
@@ -30,9 +31,6 @@ const std::vector<ParamSpec>& PathSettings::specs() {
                      "on glossy surfaces)"},
                     {"BSDF", "BSDF", "Continue paths proportionally to the BSDF times the cosine (importance sampling)"}},
                    "How continuation directions are drawn (delta lobes always use the BSDF)", "Light Paths"),
-        float_param("clamp_indirect", "Clamp Indirect", 0.0, 0.0, 1e9,
-                    "Clamp the brightest component of indirect light contributions to this value; 0 = off. Biased: it "
-                    "removes fireflies by removing energy", "Light Paths", 100.0),
         enum_param("light_sampling", "Light Sampling", "MIS",
                    {{"BSDF_ONLY", "BSDF Only",
                      "Teaching option: direct light only where continuation rays hit emitters (point, spot and sun "
@@ -71,7 +69,10 @@ const std::vector<ParamSpec>& PathSettings::specs() {
                    "How a point on an area light or emissive triangle is chosen", "Light Sampling"),
         int_param("light_samples", "Light Samples", 1, 1, 256, "Shadow rays per path vertex (stratified)",
                   "Light Sampling"),
-    };
+        };
+        for (ParamSpec& p : LightPathSettings::specs()) own.push_back(std::move(p));
+        return own;
+    }();
     return specs;
 }
 
@@ -79,7 +80,8 @@ PathSettings PathSettings::from_params(const Params& params) {
     const ParamReader read(params, specs());
     PathSettings s;
     s.pixel = PixelSampling::from_params(params);
-    s.max_bounces = read.get_int("max_bounces");
+    s.paths = LightPathSettings::read(read);
+    s.max_bounces = s.paths.max_bounces;
     s.rr_start_bounce = read.get_int("rr_start_bounce");
     const std::string rr = read.get_enum("rr_mode");
     s.rr_mode = rr == "OFF"               ? RouletteMode::Off
@@ -98,7 +100,6 @@ PathSettings PathSettings::from_params(const Params& params) {
     s.direct.ward_threshold = read.get_float("ward_threshold");
     s.light_selection = read.get_enum("light_selection");
     s.branching_factor = read.get_int("branching_factor");
-    s.clamp_indirect = read.get_float("clamp_indirect");
     return s;
 }
 
