@@ -6,7 +6,8 @@ Scenes: "cornell_box" (examples/cornell_box.py), "soft_shadow" (an area light, a
 "veach_mis" (Veach's four glossy plates under four spheres of equal power and very different sizes,
 docs/verification.md §8.2, converted to Blender's Z-up), "glossy" (glossy and diffuse spheres under an area
 light and a dim sky), "many_lights" (64 small point lights of very different powers over blocks on a floor,
-for the light-selection strategies). Every builder clears the scene and applies the shared render settings of
+for the light-selection strategies), "caustic" (a glass sphere's caustic on a floor under a small light) and
+"door" (Veach's door ajar: a room lit only through a gap from a lamp in a second room). Every builder clears the scene and applies the shared render settings of
 cornell_box.configure_render / configure_cycles / configure_candela (same bounces, filter and seed).
 """
 
@@ -213,8 +214,62 @@ def build_many_lights(scene):
     return 1.0
 
 
+def glass(name, ior=1.5):
+    def make(nt):
+        n = nt.nodes.new("ShaderNodeBsdfGlass")
+        n.distribution = "SHARP"
+        n.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        n.inputs["IOR"].default_value = ior
+        return n
+    return _material(name, make)
+
+
+def build_caustic(scene):
+    """A glass sphere on a diffuse floor before a wall, under a small area light: the caustic the sphere focuses on
+    the floor is light along L S S D E paths, which a path tracer finds only when a continuation ray happens to hit
+    the small light through the glass."""
+    rectangle(scene, "Floor", diffuse("Floor", (0.7, 0.7, 0.7)), Matrix.Diagonal((4, 4, 1, 1)))
+    rectangle(scene, "Wall", diffuse("Wall", (0.6, 0.6, 0.6)),
+              Matrix.Translation((0, 2.0, 2.0)) @ Matrix.Rotation(math.radians(90), 4, "X") @ Matrix.Diagonal((4, 2, 1, 1)))
+    sphere(scene, "Glass", glass("Glass"), (0.0, 0.0, 0.6), 0.6, segments=64, rings=32)
+    area_light(scene, "Light", (-1.2, -0.6, 2.6), 0.15, 40.0, rotation_deg=(12.0, -25.0, 0.0))
+    camera(scene, (0.0, -4.6, 2.2), (68.0, 0.0, 0.0), lens=40.0)
+    world(scene, (0, 0, 0), 0.0)
+    return 4 / 3
+
+
+def build_door(scene):
+    """Veach's door ajar: the camera's room is lit only through a door opened a few degrees onto a second room,
+    whose lamp faces away from the door — almost all light reaches the camera after several bounces through the
+    gap, the case where paths from the camera rarely find the light."""
+    white = diffuse("White", (0.7, 0.7, 0.7))
+    floor = diffuse("Floor", (0.6, 0.5, 0.4))
+    # Two rooms 4 m deep, 3 m wide, 2.5 m high, side by side along x, sharing the wall at x = 0.
+    for name, mat, matrix in (
+            ("Floor", floor, Matrix.Translation((0, 0, 0)) @ Matrix.Diagonal((6, 2, 1, 1))),
+            ("Ceiling", white, Matrix.Translation((0, 0, 2.5)) @ Matrix.Rotation(math.pi, 4, "X") @ Matrix.Diagonal((6, 2, 1, 1))),
+            ("Back", white, Matrix.Translation((0, 2, 1.25)) @ Matrix.Rotation(math.radians(90), 4, "X") @ Matrix.Diagonal((6, 1.25, 1, 1))),
+            ("Front", white, Matrix.Translation((0, -2, 1.25)) @ Matrix.Rotation(math.radians(-90), 4, "X") @ Matrix.Diagonal((6, 1.25, 1, 1))),
+            ("Left", white, Matrix.Translation((-6, 0, 1.25)) @ Matrix.Rotation(math.radians(90), 4, "Y") @ Matrix.Diagonal((1.25, 2, 1, 1))),
+            ("Right", white, Matrix.Translation((6, 0, 1.25)) @ Matrix.Rotation(math.radians(-90), 4, "Y") @ Matrix.Diagonal((1.25, 2, 1, 1)))):
+        rectangle(scene, name, mat, matrix)
+    # The dividing wall at x = 0 with a doorway 1 m wide (y ∈ [0.2, 1.2]) and 2 m high: three slabs around it.
+    cube(scene, "WallA", white, Matrix.Translation((0, -0.9, 1.25)) @ Matrix.Diagonal((0.05, 1.1, 1.25, 1)))
+    cube(scene, "WallB", white, Matrix.Translation((0, 1.6, 1.25)) @ Matrix.Diagonal((0.05, 0.4, 1.25, 1)))
+    cube(scene, "Lintel", white, Matrix.Translation((0, 0.7, 2.25)) @ Matrix.Diagonal((0.05, 0.5, 0.25, 1)))
+    # The door, hinged at y = 1.2 and opened 8° into the lit room.
+    hinge = Matrix.Translation((0, 1.2, 0)) @ Matrix.Rotation(math.radians(8), 4, "Z") @ Matrix.Translation((0, -1.2, 0))
+    cube(scene, "Door", diffuse("Door", (0.5, 0.4, 0.3)),
+         hinge @ Matrix.Translation((0.06, 0.7, 1.0)) @ Matrix.Diagonal((0.02, 0.49, 1.0, 1)))
+    # The lamp in the second room, facing away from the door (toward +x, down).
+    area_light(scene, "Lamp", (3.5, 0.8, 2.2), 0.6, 400.0, rotation_deg=(0.0, -120.0, 0.0))
+    camera(scene, (-5.4, -1.5, 1.3), (88.0, 0.0, -65.0), lens=24.0)
+    world(scene, (0, 0, 0), 0.0)
+    return 4 / 3
+
+
 BUILDERS = {"soft_shadow": build_soft_shadow, "veach_mis": build_veach_mis, "glossy": build_glossy,
-            "many_lights": build_many_lights}
+            "many_lights": build_many_lights, "caustic": build_caustic, "door": build_door}
 NAMES = ["cornell_box", *BUILDERS]
 
 

@@ -44,6 +44,19 @@ inline int camera_max_pass(const Film& film, const PixelSampling& ps) {
                : std::clamp(int(k_pass_samples / std::max(1.0, double(film.width()) * film.height())), 16, 64);
 }
 
+/// Whether Tracer also splats contributions elsewhere on the film: Li(ray, sampler, stats, alpha, aov, SplatSink).
+struct SplatSink {
+    SplatBuffer* buffer;
+    uint32_t replicate;  // of the camera sample whose path makes the splats
+};
+template <class Tracer, class = void>
+struct splats_from_camera : std::false_type {};
+template <class Tracer>
+struct splats_from_camera<Tracer, std::void_t<decltype(std::declval<const Tracer&>().Li(
+                                      std::declval<const Ray&>(), std::declval<Sampler&>(), std::declval<PathStats&>(),
+                                      static_cast<float*>(nullptr), static_cast<AovSample*>(nullptr), std::declval<SplatSink>()))>>
+    : std::true_type {};
+
 /// One pass [begin, end) of camera samples over one tile at a time, for Tracer: `Color Li(const Ray&, Sampler&,
 /// PathStats&, float* alpha, AovSample* aov) const` (aov: null, or where the tracer records the first surface the
 /// camera ray sees; integrators/camera_hit.h).
@@ -54,24 +67,26 @@ public:
         : m_scene(scene), m_camera(scene.camera()), m_film(film), m_ctx(ctx), m_ps(ps), m_tracer(tracer),
           m_aovs(ctx.aovs && !ctx.aovs->empty() ? ctx.aovs : nullptr) {}
 
-    /// Renders samples [begin, end) of every pixel of tile `tile_index` and adds them to the film.
-    void render_tile(size_t tile_index, int begin, int end) const {
+    /// Renders samples [begin, end) of every pixel of tile `tile_index` and adds them to the film; a splatting tracer's
+    /// splats go to `splats` (the caller merges them in tile order). Returns false if cancelled (nothing added).
+    bool render_tile(size_t tile_index, int begin, int end, SplatBuffer* splats = nullptr) const {
         const Tile& tile = m_film.tiles()[tile_index];
         TileBuffers buffers(tile, m_aovs != nullptr);
         std::vector<Sampler> replicates;
         for (uint32_t r = 0; r < k_noise_replicates; ++r) replicates.push_back(m_ps.replicate_sampler(r));
         PathStats stats;
         for (int y = tile.y0; y < tile.y1; ++y) {
-            if (m_ctx.cancel.cancelled()) return;  // abandon this tile's pass: nothing half-added
+            if (m_ctx.cancel.cancelled()) return false;  // abandon this tile's pass: nothing half-added
             for (int x = tile.x0; x < tile.x1; ++x) {
                 const size_t i = size_t(y - tile.y0) * tile.width() + (x - tile.x0);
                 render_pixel(m_film.origin_x() + x, m_film.origin_y() + y, begin, end, replicates, stats,
-                             buffers.pixels[i], m_aovs ? &buffers.aovs[i] : nullptr);
+                             buffers.pixels[i], m_aovs ? &buffers.aovs[i] : nullptr, splats);
             }
         }
         m_film.add_tile(tile_index, buffers.pixels);
         if (m_aovs) m_aovs->add_tile(tile_index, buffers.aovs);
         stats.flush(m_ctx.counters);
+        return true;
     }
 
 private:
@@ -88,10 +103,11 @@ private:
     /// which is what its per-pixel caches (Sobol seeds) amortise over. Only the order of the film's sums changes
     /// with this, not which samples are taken.
     __attribute__((always_inline)) void render_pixel(int fx, int fy, int begin, int end, std::vector<Sampler>& replicates,
-                                                     PathStats& stats, PixelAccum& acc, AovAccum* aov_acc) const {
+                                                     PathStats& stats, PixelAccum& acc, AovAccum* aov_acc,
+                                                     SplatBuffer* splats) const {
         for (int first = begin; first < std::min(end, begin + int(k_noise_replicates)); ++first)
             for (int s0 = first; s0 < end; s0 += k_group_size * int(k_noise_replicates))
-                render_group(fx, fy, s0, end, replicates[noise_replicate_of(uint32_t(s0))], stats, acc, aov_acc);
+                render_group(fx, fy, s0, end, replicates[noise_replicate_of(uint32_t(s0))], stats, acc, aov_acc, splats);
     }
 
     /// Camera rays go to Embree in groups of up to eight consecutive samples of one replicate (s0, s0 + B, …;
@@ -100,7 +116,7 @@ private:
     /// positioned again at its own sample (positioning is cheap within a pixel; the path draws only per-bounce
     /// dimensions after the camera's).
     __attribute__((always_inline)) void render_group(int fx, int fy, int s0, int end, Sampler& sampler, PathStats& stats,
-                                                     PixelAccum& acc, AovAccum* aov_acc) const {
+                                                     PixelAccum& acc, AovAccum* aov_acc, SplatBuffer* splats) const {
         const uint32_t replicate = noise_replicate_of(uint32_t(s0));
         Ray rays[k_group_size];
         int samples[k_group_size];
@@ -124,6 +140,8 @@ private:
             AovSample* const aov_out = m_aovs ? &aov : nullptr;
             Color L;
             if constexpr (k_group_size > 1) L = m_tracer.Li(rays[j], hits[j], sampler, stats, &alpha, aov_out);
+            else if constexpr (splats_from_camera<Tracer>::value)
+                L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out, SplatSink{splats, replicate});
             else L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out);
             ++stats.paths;
             acc.add(checked_radiance(L, fx, fy, s, stats), alpha, replicate);

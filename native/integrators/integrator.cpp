@@ -1,6 +1,10 @@
 #include "integrators/integrator.h"
 
 #include "core/error.h"
+#include "integrators/bdpt/bdpt_integrator.h"
+#include "integrators/bdpt/bdpt_settings.h"
+#include "integrators/light/light_integrator.h"
+#include "integrators/light/light_settings.h"
 #include "integrators/path/path_integrator.h"
 #include "integrators/path/path_settings.h"
 
@@ -10,6 +14,14 @@ const std::vector<IntegratorEntry>& integrator_registry() {
     static const std::vector<IntegratorEntry> registry = {
         {"PATH", "Path Tracing", "Path tracing with next-event estimation and multiple importance sampling",
          &make_path_integrator, &PathSettings::specs},
+        {"LIGHT", "Light Tracing",
+         "Particle tracing from the lights, every vertex connected to the camera (emitters seen directly or through "
+         "mirrors and glass by a camera pass; surfaces seen only through them stay dark: use BDPT)",
+         &make_light_integrator, &LightSettings::specs, &light_integrator_memory},
+        {"BDPT", "Bidirectional",
+         "Bidirectional path tracing: camera and light subpaths joined by every (s, t) strategy, weighted by multiple "
+         "importance sampling (Veach 1997, ch. 10)",
+         &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory},
     };
     return registry;
 }

@@ -134,7 +134,9 @@ EmissionSample light_sample_le(const Light& light, Vec2 u_pos, Vec2 u_dir, float
                 s.d = cosine_direction(s.n, u_dir, &s.pdf_dir);
                 s.pdf_dir *= 0.5f;
                 s.pdf_pos = 1.f / l.area;
-                s.Le = l.Le(s.p, b.y, 1.f - b.x - b.y, s.d);
+                s.b1 = b.y;
+                s.b2 = 1.f - b.x - b.y;
+                s.Le = l.Le(s.p, s.b1, s.b2, s.d);
                 return s;
             }
         },
@@ -180,6 +182,77 @@ void light_pdf_le(const Light& light, const Vec3& p, const Vec3& n, const Vec3& 
             }
         },
         light);
+}
+
+EmitterPoint light_sample_point(const Light& light, Vec2 u_pos, Vec2 u_dir, float u_side) {
+    return std::visit(
+        [&](const auto& l) -> EmitterPoint {
+            using T = std::decay_t<decltype(l)>;
+            EmitterPoint e;
+            if constexpr (std::is_same_v<T, PointLight>) {
+                if (l.radius <= 0.f) {
+                    e.p = l.position;
+                    e.pdf_pos = 1.f;
+                    e.delta_pos = true;
+                } else {
+                    e.n = sample_uniform_sphere(u_pos);
+                    e.p = l.position + e.n * l.radius;
+                    e.pdf_pos = 1.f / (4.f * k_pi * l.radius * l.radius);
+                }
+            } else if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, WorldLight>) {
+                const LightSample ls = l.sample_li(LightSampleContext{}, u_dir);
+                if (!(ls.pdf > 0.f)) return e;
+                e.infinite = true;
+                e.omega = ls.wi;
+                e.pdf_pos = ls.pdf;
+                e.Le = ls.Li;
+                if constexpr (std::is_same_v<T, SunLight>) e.delta_pos = l.tan_half_angle <= 0.f;
+            } else if constexpr (std::is_same_v<T, AreaLight>) {
+                if (!(l.area > 0.f)) return e;
+                if (l.ellipse) {
+                    const Vec2 q = sample_uniform_disk_concentric(u_pos);
+                    e.p = l.center + (l.u * q.x + l.v * q.y) * 0.5f;
+                } else {
+                    e.p = l.center + l.u * (u_pos.x - 0.5f) + l.v * (u_pos.y - 0.5f);
+                }
+                e.n = l.normal;
+                e.pdf_pos = 1.f / l.area;
+            } else {
+                if (!(l.area > 0.f)) return e;
+                const Vec2 b = sample_uniform_triangle(u_pos);
+                e.p = l.p0 * b.x + l.p1 * b.y + l.p2 * (1.f - b.x - b.y);
+                e.b1 = b.y;
+                e.b2 = 1.f - b.x - b.y;
+                e.n = l.normal;  // both sides emit: light_radiance takes the side d leaves by
+                e.pdf_pos = 1.f / l.area;
+            }
+            return e;
+        },
+        light);
+}
+
+Color light_radiance(const Light& light, const EmitterPoint& pt, const Vec3& d) {
+    return std::visit(
+        [&](const auto& l) -> Color {
+            using T = std::decay_t<decltype(l)>;
+            if constexpr (std::is_same_v<T, PointLight>) {
+                const float att = l.spot.attenuation(d);
+                if (l.radius <= 0.f) return l.intensity * att;
+                return dot(pt.n, d) > 0.f ? l.intensity * (att / (k_pi * l.radius * l.radius)) : Color(0.f);
+            } else if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, WorldLight>) {
+                return pt.Le;
+            } else if constexpr (std::is_same_v<T, AreaLight>) {
+                return dot(l.normal, d) > 0.f ? l.radiance : Color(0.f);
+            } else {
+                return l.Le(pt.p, pt.b1, pt.b2, d);
+            }
+        },
+        light);
+}
+
+bool light_hittable(const Light& light) {
+    return std::holds_alternative<AreaLight>(light) || std::holds_alternative<TriangleLight>(light) ||
+           std::holds_alternative<WorldLight>(light);
 }
 
 float light_emitted_power(const Light& light, const SceneSphere& bounds) {

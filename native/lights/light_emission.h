@@ -45,6 +45,7 @@ struct EmissionSample {
     float pdf_dir = 0.f;  // solid-angle density of d given p (1 for a delta direction)
     bool delta_pos = false, delta_dir = false;
     bool infinite = false;  // sun and world: p lies on a disk outside the scene
+    float b1 = 0.f, b2 = 0.f;  // a triangle's barycentric weights of p (textured emission)
 
     bool valid() const { return pdf_pos > 0.f && pdf_dir > 0.f && !is_black(Le); }
     /// The flux weight a light path starts with: Le·|cos θ|/(p_pos·p_dir) (cos θ = 1 without a surface).
@@ -61,6 +62,30 @@ EmissionSample light_sample_le(const Light& l, Vec2 u_pos, Vec2 u_dir, float u_s
 /// for any such ray of light l: 0 where the light cannot emit it.
 void light_pdf_le(const Light& l, const Vec3& p, const Vec3& n, const Vec3& d, const SceneSphere& bounds,
                   float* pdf_pos, float* pdf_dir);
+
+/// A point on an emitter drawn with the density light_sample_le gives its origins (for the strategies that connect
+/// a path to a light, so that every strategy sees one density for the light vertex): uniform on area lights and
+/// triangles (both sides of a triangle emit: the side is the one the connection leaves by), uniform on a soft point
+/// light's sphere, the position of a point light; for the sun and the world a direction toward them, by their own
+/// sampling.
+struct EmitterPoint {
+    Vec3 p{0.f}, n{0.f};   // point and unit normal (on the emitting side chosen); zero normal for points
+    float pdf_pos = 0.f;   // area density of p (1 for a delta position); for distant lights the solid-angle density of omega
+    bool delta_pos = false, infinite = false;
+    Vec3 omega{0.f};       // distant lights: the unit direction toward the light
+    float b1 = 0.f, b2 = 0.f;  // a triangle's barycentric weights of p (textured emission)
+    Color Le{0.f};         // distant lights: the radiance (irradiance for a delta sun) arriving along −omega
+    bool valid() const { return pdf_pos > 0.f; }
+};
+EmitterPoint light_sample_point(const Light& l, Vec2 u_pos, Vec2 u_dir, float u_side);
+
+/// The radiance emitter l sends from its point `pt` along unit direction d (0 toward its back). Distant lights:
+/// pt.Le (the direction is pt.omega's).
+Color light_radiance(const Light& l, const EmitterPoint& pt, const Vec3& d);
+
+/// Whether rays can hit the light (area lights, triangles, the world): the others — point and spot lights, the sun
+/// — are reached only by connecting to them.
+bool light_hittable(const Light& l);
 
 /// The light's flux Φ (luminance) as light_sample_le emits it: the spot's true cone integral, the world through
 /// the bounding disk. For textured triangles, the flux of their `radiance` (an estimate).

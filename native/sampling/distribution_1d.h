@@ -23,6 +23,10 @@ public:
     explicit Distribution1D(std::vector<float> weights);
 
     size_t size() const { return m_func.size(); }
+    /// Memory its tables take.
+    size_t bytes() const {
+        return (m_func.capacity() + m_cdf.capacity() + m_pmf.capacity()) * sizeof(float) + m_resolve.capacity() * sizeof(uint32_t);
+    }
     float integral() const { return m_integral; }
 
     /// Picks bin i with probability weight_i / Σ weight; returns i, its probability and u re-scaled to

@@ -20,6 +20,27 @@ struct Aperture {
 
     bool is_pinhole() const { return !(radius > 0.f); }
 
+    /// Area of the aperture in the lens plane (scene units²): πr²/ratio for a disk; for n blades, n triangles
+    /// (centre and two corners 2π/n apart on the circle of radius r) of area ½·sin(2π/n)·r² each, /ratio; 0 pinhole.
+    float area() const {
+        if (is_pinhole()) return 0.f;
+        const float unit = blades < 3 ? k_pi : 0.5f * float(blades) * std::sin(2.f * k_pi / float(blades));
+        return unit * radius * radius * inv_ratio;
+    }
+
+    /// Whether the lens-plane point p (camera-space x, y) lies on the aperture, with a relative margin `tolerance`
+    /// (points sample() produced pass for any tolerance above float rounding). The polygon's edge k has its outward
+    /// normal at rotation + 2kπ/n (half-way between its corners) and lies cos(π/n) from the centre.
+    bool contains(Vec2 p, float tolerance = 1e-4f) const {
+        if (is_pinhole()) return false;
+        const float qx = p.x / (inv_ratio * radius), qy = p.y / radius;  // back on the unit shape
+        if (blades < 3) return qx * qx + qy * qy <= (1.f + tolerance) * (1.f + tolerance);
+        const float n = float(blades), sector = 2.f * k_pi / n;
+        const float k = std::nearbyint((std::atan2(qy, qx) - rotation) / sector);  // the edge facing q
+        const float a = rotation + k * sector;
+        return qx * std::cos(a) + qy * std::sin(a) <= std::cos(k_pi / n) * (1.f + tolerance);
+    }
+
     /// A point on the aperture (camera-space x, y) from u uniform in [0, 1)²: uniform by area.
     Vec2 sample(Vec2 u) const {
         Vec2 p;

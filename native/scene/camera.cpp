@@ -7,7 +7,8 @@
 
 namespace candela {
 
-Camera::Camera(const Params& params, const Affine& camera_to_world) : m_to_world(camera_to_world) {
+Camera::Camera(const Params& params, const Affine& camera_to_world)
+    : m_to_world(camera_to_world), m_to_camera(camera_to_world.inverse()) {
     m_width = params.require<int>("width");
     m_height = params.require<int>("height");
     if (m_width <= 0 || m_height <= 0)
@@ -98,10 +99,11 @@ Camera::Camera(const Params& params, const Affine& camera_to_world) : m_to_world
 
 void Camera::translate(const Vec3& offset) {
     for (int r = 0; r < 3; ++r) m_to_world.m[r][3] += offset[r];
+    m_to_camera = m_to_world.inverse();
 }
 
 Vec2 Camera::world_to_raster(const Vec3& p) const {
-    const Vec3 q = m_to_world.inverse().point(p);  // camera space: looking down −Z
+    const Vec3 q = m_to_camera.point(p);  // camera space: looking down −Z
     float sx = q.x, sy = q.y;
     if (!m_ortho) {
         const float depth = std::fmax(-q.z, 1e-30f);

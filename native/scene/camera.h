@@ -4,9 +4,14 @@
 // meets on the plane of focus, a plane at focus_distance in front of the camera — of the near clip plane for an
 // orthographic camera; the aperture radius is lens/(2·f-stop), lens in metres, or 1/(2·f-stop) orthographic).
 // Raster coordinates are Blender's: x to the right, y up, (0, 0) the bottom-left corner of the full frame.
+//
+// Camera importance (scene/camera_importance.cpp): the camera seen from the scene, for light-rooted strategies
+// (light tracing, bidirectional path tracing): connections from a world point to the lens, the raster position of
+// a camera ray, its position and direction densities, and the importance K of a connection.
 #pragma once
 
 #include <cmath>
+#include <string>
 
 #include "core/params.h"
 #include "core/transform.h"
@@ -22,8 +27,31 @@ struct Ray {
     uint8_t type = k_ray_all;  // RayType: which objects it can hit (scene/ray_visibility.h)
 };
 
+/// A connection from a world point to the camera, for light-rooted strategies.
+struct CameraConnection {
+    Vec3 wi;                 // unit direction from the reference point toward lens_point
+    float dist = 0.f;        // distance from the reference point to lens_point
+    Vec3 lens_point;         // where the camera ray through the reference point starts (on the aperture; on the
+                             // clip_start plane for orthographic)
+    Vec2 raster;             // the full-frame raster position that camera ray has
+    /// K: for a camera ray of generate_ray with raster uniform over the full frame and u_lens uniform,
+    /// E_lens[K·|cos θ_ref|]·a is the probability that it hits a small disk of area a at the reference point whose
+    /// normal makes the angle θ_ref with wi. Perspective (pinhole or thin lens): 1/(A_img·cos³θ·dist²), θ between
+    /// the ray and the view axis, A_img = image_plane_area(); orthographic with depth of field: 1/(A_view·cos θ).
+    float importance = 0.f;
+    float pdf_pos = 1.f;     // area density of lens_point under generate_ray's lens sampling (1 and delta_pos for a
+                             // pinhole; orthographic with depth of field: 1/A_view on the clip_start plane)
+    float pdf_dir = 0.f;     // solid-angle density of the ray direction under generate_ray with raster uniform over the full frame
+    bool delta_pos = false;
+};
+
 class Camera {
 public:
+    /// What an integrator that needs a connection to the camera reports for a camera that has none
+    /// (not_connectable_message()).
+    static constexpr const char* k_not_connectable_message =
+        "the orthographic camera without depth of field has no light-tracing strategy: use PATH or enable depth of field";
+
     /// Reads the camera params (docs/architecture.md); camera_to_world has no scale.
     Camera(const Params& params, const Affine& camera_to_world);
 
@@ -51,8 +79,45 @@ public:
     /// inverse of generate_ray's mapping without aperture). A point behind a perspective camera maps far outside.
     Vec2 world_to_raster(const Vec3& p) const;
 
+    // ---- Importance (scene/camera_importance.cpp) ----------------------------------------------------------
+    bool orthographic() const { return m_ortho; }
+    /// False only for a pinhole orthographic camera: its rays have one direction (a delta), so no strategy that
+    /// connects a scene point to the camera, or hits the camera, can reach it.
+    bool connectable() const { return !m_ortho || has_aperture(); }
+    /// "" if connectable(), else k_not_connectable_message (for the integrator's error or log line).
+    std::string not_connectable_message() const { return connectable() ? std::string() : k_not_connectable_message; }
+    /// A pinhole perspective camera: every ray starts at position() (CameraConnection::delta_pos).
+    bool delta_position() const { return !m_ortho && !has_aperture(); }
+    /// Samples the lens point with u_lens (the same warp generate_ray uses) and returns the connection to world
+    /// point `ref`; false if ref is behind the camera, outside the frame, or outside [clip_start, clip_end] along
+    /// the view axis (exactly the points a generate_ray ray could reach before tmax), or the camera is not
+    /// connectable.
+    /// `margin` (pixels) widens the frame: filter importance sampling sends the camera rays of border pixels up to
+    /// half the filter's support beyond it, so connections there must count too (the film keeps their weights
+    /// for the pixels inside).
+    bool connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out, float margin = 0.f) const;
+    /// The raster position of a ray generate_ray could produce (its origin on the lens / clip plane, or anywhere
+    /// on the same line; its direction): false outside the frame or if it does not point forward.
+    bool raster_of(const Ray& camera_ray, Vec2* raster, float margin = 0.f) const;
+    /// pdf_pos and pdf_dir (as in CameraConnection) of a camera ray: pdf_dir is 0 outside the frame, and both
+    /// are 0 where the ray does not leave the aperture (its support: Aperture::contains).
+    void pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir, float margin = 0.f) const;
+    /// Perspective: area of the viewplane rectangle at z = −1 (tan_half_fov included); orthographic: the
+    /// viewplane's area in world units.
+    float image_plane_area() const;
+    /// Aperture::area(): πr²/ratio for a disk, (n/2)·sin(2π/n)·r²/ratio for n blades; 0 for a pinhole.
+    float lens_area() const { return m_aperture.area(); }
+
 private:
+    /// The raster position of viewplane point (sx, sy); false outside the full frame [0, W] × [0, H].
+    bool viewplane_to_raster(float sx, float sy, Vec2* raster, float margin = 0.f) const;
+    /// The camera-space ray of a world ray, with its origin moved along it onto the lens plane (z = 0,
+    /// perspective) or the clip_start plane (orthographic), and its direction unit length; false if it does
+    /// not point forward (d.z < 0).
+    bool to_lens_plane(const Ray& ray, Vec3* o_cam, Vec3* d_cam) const;
+
     Affine m_to_world;
+    Affine m_to_camera;  // m_to_world's inverse
     bool m_ortho = false;
     int m_width = 0, m_height = 0;
     float m_left = -1, m_right = 1, m_bottom = -1, m_top = 1;  // viewplane

@@ -35,6 +35,19 @@ struct SceneStats {
     size_t coplanar_objects = 0;    // objects with a coplanar overlapping rival (they get the tie-break filter)
 };
 
+/// The triangles of one top-level object as Embree holds them (Scene::object_triangles), for samplers of
+/// surface points: vertex positions (camera-world space for a flattened mesh; object space for an instance, which
+/// object_to_world maps to camera-world space) and three vertex indices per triangle. Valid while the scene lives.
+struct ObjectTriangles {
+    const float* vertices = nullptr;    // x, y, z per vertex
+    const uint32_t* indices = nullptr;  // 3 per triangle
+    uint32_t triangle_count = 0;
+    bool instanced = false;
+    uint32_t mesh = 0;                  // the input mesh: the instances of one mesh share vertices and indices
+    Affine object_to_world;             // the identity for a flattened mesh (its vertices are in world space)
+    uint8_t flags = k_object_default;   // ObjectFlag bits: the ray types the object is visible to
+};
+
 class Scene : private EmissionSource {
 public:
     /// Builds the scene; throws InvalidScene/InvalidParameter for bad input and Cancelled if `cancel`
@@ -128,8 +141,23 @@ public:
         return hit.material < m_material_holdout.size() ? m_material_holdout[hit.material] : 0.f;
     }
     bool has_holdouts() const { return m_has_holdouts; }
+    /// Whether the object hit is visible to rays of `type` (Blender's Ray Visibility).
+    bool visible_to(const SurfaceHit& hit, uint8_t type) const { return (m_object_flags[hit.object] & type) != 0; }
+    /// Ray types some object is hidden from (light-rooted integrators cannot honour DIFFUSE, GLOSSY and
+    /// TRANSMISSION visibility, and say so).
+    uint32_t hidden_ray_types() const { return m_hidden_from; }
     /// Blender's pass index of the object hit (the IndexOB pass).
     uint32_t pass_index(const SurfaceHit& hit) const;
+
+    // Geometry for samplers of surface points (scene/scene_geometry.cpp). Top-level objects are numbered
+    // 0 .. object_count() − 1 (SurfaceHit::object), one per instance with faces.
+    uint32_t object_count() const;
+    ObjectTriangles object_triangles(uint32_t object) const;
+    /// The SurfaceHit at barycentrics (b1, b2) of triangle `prim` of `object`, filled as intersect() fills a hit
+    /// there (position, normals, material, light, primitive, object), with t = 0; shade() works on it.
+    SurfaceHit surface_point(uint32_t object, uint32_t prim, float b1, float b2) const;
+    /// ObjectFlag bits of a top-level object: the ray types it is visible to, holdout.
+    uint8_t object_flags(uint32_t object) const { return m_object_flags[object]; }
     /// Embree scene handle, for benchmarks that shoot raw rays.
     RTCScene embree_scene() const { return m_top.get(); }
 

@@ -295,6 +295,7 @@ struct Scene::Builder {
         const unsigned id = rtcAttachGeometry(scene.m_top.get(), inst);
         rtcReleaseGeometry(inst);
         pl.instanced = true;
+        pl.mesh_scene = mesh_scene[m];
         pl.normal_to_world = xf.normal_matrix();
         pl.light_base = add_triangle_lights(m, xf, scene.m_shading[m], pl, id);
         // Camera-world magnitude of the instance: its object-space bounds' corners, transformed.

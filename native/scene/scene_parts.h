@@ -33,6 +33,7 @@ struct Scene::Placement {
     float magnitude = 0.f;   // largest |coordinate| of its vertices in camera-world space (rounding scale)
     Affine normal_to_world;  // cofactor matrix (instances only)
     int32_t light_base = -1; // light index of the mesh's first emissive triangle in this placement
+    int32_t mesh_scene = -1; // an instance's shared BVH (index into m_mesh_scenes)
     Affine object_to_world;  // object → camera-world (flattened meshes too: textures need object space)
     Affine world_to_object;
     Vec3 color{1.f};          // Object Info > Color, Alpha, Random (instance_color, instance_random)

@@ -15,11 +15,11 @@
 // directions choose the same frame).
 //
 // Adjoint shading normals (Veach 1997, §5.3): a light path's throughput over a vertex is multiplied by
-//     f(w_c, w_l) · |w_c·ng| · |w_l·ns| / |w_l·ng|  /  p(w_c)
+//     f(w_c, w_l) · |w_c·ng| · |w_l·n| / |w_l·ng|  /  p(w_c)
 // — the geometric cosine of the outgoing direction (it converts the next vertex's area to this one's solid angle)
-// and the ratio of the incoming direction's shading and geometric cosines (the shading cosine the rendering
-// equation takes at this vertex, over the geometric one the previous segment carried). With ns = ng it is the
-// usual f·|cos θ|/p.
+// and the ratio of the incoming direction's cosine about n, the normal of w_c's frame (the cosine the path
+// tracer's rendering equation takes at this vertex), over the geometric one the previous segment carried. With
+// ns = ng it is the usual f·|cos θ|/p.
 #pragma once
 
 #include <cmath>
@@ -104,7 +104,6 @@ public:
         const Bsdf& bsdf = sp.bsdf();
         const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_l);
         const float eps = mixture_share(v, bsdf);
-        const float correction = incoming_correction(w_l, v);
         if (u_lobe < eps) {  // the cosine share about ng (non-delta)
             const float uc = u_lobe / eps;
             const bool through = (bsdf.flags() & k_bsdf_transmission) && uc >= 0.5f;
@@ -113,7 +112,7 @@ public:
             out.w = Frame(v.ng).to_world(local);
             out.pdf = pdf_light(w_l, out.w);
             if (!(out.pdf > 0.f)) return {};
-            out.weight = f(out.w, w_l) * (std::fabs(dot(out.w, v.ng)) * correction / out.pdf);
+            out.weight = f(out.w, w_l) * (std::fabs(dot(out.w, v.ng)) * adjoint_factor(out.w, w_l) / out.pdf);
             out.bsdf.flags = (through ? k_bsdf_transmission : k_bsdf_reflection) | k_bsdf_diffuse;
             return out;
         }
@@ -129,28 +128,52 @@ public:
             if (frame_is_shading(out.w) != frame_is_shading(w_l)) return {};
             out.delta = true;
             out.pdf = (1.f - eps) * bs.pdf;
-            out.weight = bs.f * (std::fabs(dot(out.w, v.ng)) * correction / out.pdf);
+            out.weight = bs.f * (std::fabs(dot(out.w, v.ng)) * adjoint_factor(out.w, w_l) / out.pdf);
             return out;
         }
         out.pdf = pdf_light(w_l, out.w);
         if (!(out.pdf > 0.f)) return {};
-        out.weight = f(out.w, w_l) * (std::fabs(dot(out.w, v.ng)) * correction / out.pdf);
+        out.weight = f(out.w, w_l) * (std::fabs(dot(out.w, v.ng)) * adjoint_factor(out.w, w_l) / out.pdf);
         return out;
     }
 
-    /// |w_l·ns| / |w_l·ng| (Veach's adjoint factor for the incoming direction; 1 without shading normals).
-    float incoming_correction(const Vec3& w_l) const {
-        const ShadingPoint& sp = shading(w_l);
-        return incoming_correction(w_l, SurfaceVertex::at(m_hit, sp.ns, w_l));
+    /// Camera-side sampling: w_l drawn from w_c by the BSDF of w_c's side in its frame, as the path tracer draws it;
+    /// weight f·|w_l·ns|/p (the shading cosine of the rendering equation).
+    Sample sample_camera(const Vec3& w_c, Vec2 u, float u_lobe) const {
+        Sample out;
+        const ShadingPoint& sp = shading(w_c);
+        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        const BsdfSample bs = sp.bsdf().sample(v.frame.to_local(w_c), u, u_lobe);
+        if (!bs.valid() || is_black(bs.f)) return {};
+        out.w = v.frame.to_world(bs.wi);
+        if (leaks(dot(out.w, v.ng), bs.wi.z)) return {};
+        out.bsdf = bs;
+        out.delta = bs.is_delta();
+        out.pdf = bs.pdf;
+        // A bent normal's bump shadowing scales f only (bsdf/bsdf.h): the sample's density stays, its f is f()'s.
+        const Color f_wi = sp.bent && !bs.is_delta() ? f(w_c, out.w) : bs.f;
+        out.weight = f_wi * (std::fabs(bs.wi.z) / bs.pdf);
+        return out;
+    }
+    /// |w_l·ns| for the camera side's frame of w_c: the shading cosine a connection toward w_l carries at a camera
+    /// vertex.
+    float camera_cosine(const Vec3& w_c, const Vec3& w_l) const {
+        const ShadingPoint& sp = shading(w_c);
+        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        return std::fabs(dot(w_l, v.frame.n));
+    }
+
+    /// Veach's adjoint factor for the incoming direction: |w_l·n|/|w_l·ng|, n the normal of w_c's frame (the
+    /// cosine the rendering equation takes at this vertex, over the geometric one the previous segment carried);
+    /// 1 without shading normals.
+    float adjoint_factor(const Vec3& w_c, const Vec3& w_l) const {
+        const float g = std::fabs(dot(w_l, m_hit.ng));
+        return g > 0.f ? camera_cosine(w_c, w_l) / g : 0.f;
     }
 
 private:
     int side(const Vec3& w) const { return dot(w, m_hit.ng) < 0.f ? 1 : 0; }
 
-    static float incoming_correction(const Vec3& w_l, const SurfaceVertex& v) {
-        const float g = std::fabs(dot(w_l, v.ng));
-        return g > 0.f ? std::fabs(dot(w_l, v.ns)) / g : 0.f;
-    }
     /// Whether the frame of direction w (on its own side) is the shading one: w above its shading hemisphere.
     bool frame_is_shading(const Vec3& w) const {
         const ShadingPoint& sp = shading(w);

@@ -1,5 +1,6 @@
 #include "integrators/path/path_settings.h"
 
+#include "integrators/common/path_specs.h"
 #include "lights/light_sampler.h"
 
 namespace candela {
@@ -7,19 +8,9 @@ namespace candela {
 const std::vector<ParamSpec>& PathSettings::specs() {
     static const std::vector<ParamSpec> specs = [] {
         std::vector<ParamSpec> own = {
-        int_param("max_bounces", "Max Bounces", 12, 0, 1024, "Maximum path length; 0 = direct light only",
-                  "Light Paths"),
-        enum_param("rr_mode", "Russian Roulette", "THROUGHPUT",
-                   {{"OFF", "Off", "No Russian roulette: paths end at Max Bounces only"},
-                    {"THROUGHPUT", "Throughput", "Survival probability from the path throughput"},
-                    {"ALBEDO", "Albedo", "Survival probability from the surface's reflectance"},
-                    {"SQRT_THROUGHPUT", "Square Root Throughput",
-                     "Cycles' rule: on arrival at a vertex, continue with probability √(max throughput); paths live "
-                     "longer than with Throughput. Cycles' Min Light Bounces m matches Russian Roulette From m + 2"}},
-                   "How paths are ended before Max Bounces without bias", "Light Paths"),
-        active_if(int_param("rr_start_bounce", "Russian Roulette From", 3, 0, 1024,
-                            "Russian roulette from this bounce on", "Light Paths"),
-                  "rr_mode!=OFF"),
+        max_bounces_spec(),
+        rr_mode_spec(),
+        rr_start_bounce_spec(),
         int_param("branching_factor", "Branching Factor", 1, 1, 256,
                   "Continuation rays at the first surface (stochastic ray tracing); 1 is path tracing", "Light Paths"),
         enum_param("hemisphere_sampling", "Hemisphere Sampling", "BSDF",
@@ -83,11 +74,7 @@ PathSettings PathSettings::from_params(const Params& params) {
     s.paths = LightPathSettings::read(read);
     s.max_bounces = s.paths.max_bounces;
     s.rr_start_bounce = read.get_int("rr_start_bounce");
-    const std::string rr = read.get_enum("rr_mode");
-    s.rr_mode = rr == "OFF"               ? RouletteMode::Off
-                : rr == "ALBEDO"          ? RouletteMode::Albedo
-                : rr == "SQRT_THROUGHPUT" ? RouletteMode::SqrtThroughput
-                                          : RouletteMode::Throughput;
+    s.rr_mode = parse_rr_mode(read.get_enum("rr_mode"));
     const std::string hs = read.get_enum("hemisphere_sampling");
     s.hemisphere_sampling = hs == "UNIFORM" ? HemisphereSampling::Uniform
                             : hs == "COSINE" ? HemisphereSampling::Cosine : HemisphereSampling::Bsdf;

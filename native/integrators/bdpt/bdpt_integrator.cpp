@@ -1,0 +1,75 @@
+#include "integrators/bdpt/bdpt_integrator.h"
+
+#include "core/parallel_ordered.h"
+#include "integrators/bdpt/bdpt_tracer.h"
+#include "integrators/camera_tiles.h"
+
+namespace candela {
+
+namespace {
+
+class BdptIntegrator final : public Integrator {
+public:
+    explicit BdptIntegrator(const Params& params) : m_settings(BdptSettings::from_params(params)) {}
+
+    void render(const Scene& scene, Film& film, RenderContext& ctx) override {
+        const EmitterSet emitters(scene.lights(), scene.bounds());
+        if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
+            ctx.log("BDPT: objects hidden from diffuse, glossy or transmission rays are visible to light subpaths and "
+                    "connections (only camera and shadow visibility are honoured)");
+        if (!scene.camera().connectable())
+            ctx.log("BDPT: the orthographic camera without depth of field has no light-tracing strategy (t = 1): "
+                    "the other strategies render the image");
+        const BdptTracer tracer(scene, m_settings, emitters);
+        const PixelSampling& ps = m_settings.pixel;
+        const CameraTilePass<BdptTracer> tiles(scene, film, ctx, ps, tracer);
+        const double frame_pixels = double(scene.camera().full_width()) * scene.camera().full_height();
+        struct TileSplats {
+            SplatBuffer buffer;
+            bool complete = false;
+        };
+        ProgressivePlan plan;
+        plan.total = ps.samples;
+        plan.max_pass = camera_max_pass(film, ps);
+        plan.time_limit = ps.time_limit;
+        plan.noise_threshold = ps.noise_threshold;
+        run_progressive(
+            ctx, plan,
+            [&](int64_t begin, int64_t end) {
+                parallel_ordered(
+                    ctx.threads, film.tiles().size(), size_t(2 * resolve_thread_count(ctx.threads)),
+                    [&](size_t t) {
+                        TileSplats out;
+                        out.complete = tiles.render_tile(t, int(begin), int(end), &out.buffer);
+                        return out;
+                    },
+                    [&](size_t t, TileSplats&& splats) {
+                        if (!splats.complete) return;
+                        // t = 1 splats: one light subpath per camera sample, counted per pixel of the full frame.
+                        const Tile& tile = film.tiles()[t];
+                        const double share = double(tile.width()) * tile.height() / frame_pixels;
+                        double samples[k_noise_replicates] = {};
+                        for (int64_t s = begin; s < end; ++s) samples[noise_replicate_of(uint32_t(s))] += share;
+                        film.add_splats(splats.buffer, ps.filter, samples);
+                    },
+                    &ctx.cancel);
+            },
+            [&] { return film.noise_estimate(); });
+    }
+    WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
+
+private:
+    BdptSettings m_settings;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_bdpt_integrator(const Params& params) {
+    return std::make_unique<BdptIntegrator>(params);
+}
+
+double bdpt_integrator_memory(const Params& params, double film_pixels) {
+    return film_pixels * double(sizeof(SplatAccum));
+}
+
+}  // namespace candela

@@ -1,0 +1,266 @@
+#include "integrators/bdpt/strategy.h"
+
+#include <cmath>
+
+#include "integrators/shadow_ray.h"
+#include "scene/ray_offset.h"
+
+namespace candela {
+
+namespace {
+
+/// Unit direction from vertex a toward vertex b (a distant b: toward its light; a distant a: along its light).
+Vec3 direction(const PathVertex& a, const PathVertex& b) {
+    if (b.infinite) return b.w;
+    if (a.infinite) return -a.w;
+    return normalize(b.p - a.p);
+}
+
+/// Light vertex `v`'s emitter point, for the emission functions (the side its normal takes: the one toward d).
+EmitterPoint emitter_point(const PathVertex& v, const Vec3& d) {
+    EmitterPoint e;
+    e.p = v.p;
+    e.n = dot(v.ng, d) < 0.f ? -v.ng : v.ng;
+    e.delta_pos = PathVertex::is_zero(v.ng) && !v.infinite;
+    e.infinite = v.infinite;
+    e.omega = v.w;
+    e.Le = v.Le;
+    e.b1 = v.hit.b1;
+    e.b2 = v.hit.b2;
+    return e;
+}
+
+/// The emitter index of an emitting vertex (a light vertex, or a surface whose triangle emits), or −1.
+int32_t emitter_of(const PathVertex& v) {
+    if (v.kind == VertexKind::Light) return v.emitter;
+    if (v.kind == VertexKind::Surface) return v.hit.light;
+    return -1;
+}
+
+float remap0(float p) { return p != 0.f ? p : 1.f; }
+
+float heuristic(MisHeuristic h, float r) { return h == MisHeuristic::Power ? r * r : r; }
+
+}  // namespace
+
+float Densities::light_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next) const {
+    if (cur.kind == VertexKind::Light || (cur.kind == VertexKind::Surface && !prev)) return emission(cur, next);
+    if (cur.kind != VertexKind::Surface || !prev) return 0.f;
+    return solid_angle_to_area(cur, next, cur.bsdf->pdf_light(direction(cur, *prev), direction(cur, next)));
+}
+float Densities::camera_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next) const {
+    if (cur.kind == VertexKind::Camera) {
+        float pos = 0.f, dir = 0.f;
+        const Ray ray{cur.p, direction(cur, next)};
+        m_c.scene.camera().pdf_we(ray, &pos, &dir);
+        return solid_angle_to_area(cur, next, dir);
+    }
+    if (cur.kind != VertexKind::Surface || !prev) return 0.f;
+    return solid_angle_to_area(cur, next, cur.bsdf->pdf_camera(direction(cur, *prev), direction(cur, next)));
+}
+float Densities::emission(const PathVertex& light, const PathVertex& next) const {
+    const int32_t e = emitter_of(light);
+    if (e < 0) return 0.f;
+    const Vec3 d = direction(light, next);
+    const EmitterPoint pt = emitter_point(light, d);
+    float pos = 0.f, dir = 0.f;
+    light_pdf_le(m_c.emitters[size_t(e)], light.infinite ? next.p : light.p, pt.n, d, m_c.emitters.bounds(), &pos, &dir);
+    if (light.infinite) return pos * (next.on_surface() ? std::fabs(dot(next.ng, d)) : 1.f);  // parallel rays
+    return solid_angle_to_area(light, next, dir);
+}
+float Densities::origin(const PathVertex& v, const PathVertex& toward) const {
+    const int32_t e = emitter_of(v);
+    if (e < 0) return 0.f;
+    const Vec3 d = direction(v, toward);
+    const EmitterPoint pt = emitter_point(v, d);
+    float pos = 0.f, dir = 0.f;
+    light_pdf_le(m_c.emitters[size_t(e)], v.p, pt.n, d, m_c.emitters.bounds(), &pos, &dir);
+    return m_c.emitters.pmf(uint32_t(e)) * (v.infinite ? dir : pos);
+}
+
+float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, int s, const std::vector<PathVertex>& z, int t,
+                      const PathVertex* sampled, const PathVertex* area) {
+    if (s + t == 2) return 1.f;  // (0, 2): the only strategy of a two-vertex path (the tracer skips (1, 1))
+    const Densities d(c);
+    // `sampled` is the fresh vertex of the connection: the camera's for t = 1, else the light's for s = 1.
+    auto Y = [&](int i) -> const PathVertex& { return (t != 1 && s == 1 && i == 0 && sampled) ? *sampled : y[size_t(i)]; };
+    auto Z = [&](int i) -> const PathVertex& {
+        if (t == 1 && i == 0 && sampled) return *sampled;
+        if (area && i == t - 1) return *area;
+        return z[size_t(i)];
+    };
+    const PathVertex* qs = s > 0 ? &Y(s - 1) : nullptr;
+    const PathVertex* qs_minus = s > 1 ? &Y(s - 2) : nullptr;
+    const PathVertex& pt = Z(t - 1);
+    const PathVertex* pt_minus = t > 1 ? &Z(t - 2) : nullptr;
+    // The reverse densities the connection changes.
+    const float pt_rev = qs ? d.light_side(*qs, qs_minus, pt) : d.origin(pt, *pt_minus);
+    const float pt_minus_rev = !pt_minus ? 0.f : qs ? d.light_side(pt, qs, *pt_minus) : d.emission(pt, *pt_minus);
+    const float qs_rev = qs ? d.camera_side(pt, pt_minus, *qs) : 0.f;
+    const float qs_minus_rev = qs_minus ? d.camera_side(*qs, &pt, *qs_minus) : 0.f;
+    const MisHeuristic h = c.settings.heuristic;
+    const bool connectable = c.scene.camera().connectable();
+    float sum = 0.f, ri = 1.f;
+    for (int i = t - 1; i > 0; --i) {
+        const float rev = i == t - 1 ? pt_rev : i == t - 2 ? pt_minus_rev : Z(i).pdf_rev;
+        ri *= remap0(rev) / remap0(Z(i).pdf_fwd);
+        const bool delta_i = i == t - 1 ? false : Z(i).delta;
+        const bool delta_prev = i - 1 == t - 1 ? false : Z(i - 1).delta;
+        if (!delta_i && !delta_prev && (i != 1 || connectable)) sum += heuristic(h, ri);
+    }
+    ri = 1.f;
+    for (int i = s - 1; i >= 0; --i) {
+        const float rev = i == s - 1 ? qs_rev : i == s - 2 ? qs_minus_rev : Y(i).pdf_rev;
+        ri *= remap0(rev) / remap0(Y(i).pdf_fwd);
+        const bool delta_i = i == s - 1 ? false : Y(i).delta;
+        const bool delta_prev = i > 0 ? (i - 1 == s - 1 ? false : Y(i - 1).delta) : Y(0).delta_light;
+        if (!delta_i && !delta_prev) sum += heuristic(h, ri);
+    }
+    return 1.f / (1.f + sum);
+}
+
+namespace {
+
+Vec3 leave(const PathVertex& v, const Vec3& w) {
+    if (!v.on_surface()) return v.p;
+    return offset_ray_origin(v.p, dot(w, v.ng) > 0.f ? v.ng : -v.ng);
+}
+
+/// Whether the segment between two finite vertices (or toward a distant one) is unblocked for rays of `type`.
+bool visible(const Scene& scene, const PathVertex& a, const PathVertex& b, uint8_t type, PathStats& stats) {
+    ++stats.rays;
+    const PrimitiveRef pa = a.kind == VertexKind::Surface ? a.hit.primitive : PrimitiveRef{};
+    const PrimitiveRef pb = b.kind == VertexKind::Surface ? b.hit.primitive : PrimitiveRef{};
+    const Vec3 w = direction(a, b);
+    const Vec3 o = leave(a, w);
+    if (b.infinite) return !scene.occluded(o, w, std::numeric_limits<float>::infinity(), RayType(type), pa);
+    const Vec3 target = b.on_surface() ? leave(b, -w) : b.p;
+    const Vec3 seg = target - o;
+    if (!(length_squared(seg) > 0.f)) return true;
+    return !scene.occluded(o, seg, 1.f - k_shadow_epsilon, RayType(type), pa, pb);
+}
+
+/// The radiance an emitting camera vertex sends back along its path (s = 0).
+Color emitted(const BdptContext& c, const PathVertex& v) {
+    if (v.infinite) {
+        const Light& l = c.emitters[size_t(v.emitter)];
+        if (const auto* w = std::get_if<WorldLight>(&l)) return w->Le(v.w);
+        return Color(0.f);
+    }
+    if (v.kind == VertexKind::Light) return v.Le;  // an area light hit (its radiance, set by the caller)
+    return v.bsdf ? v.bsdf->shading(v.w).emission : Color(0.f);
+}
+
+}  // namespace
+
+StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVertex>& y, int s,
+                                 const std::vector<PathVertex>& z, int t, const std::vector<VertexNumbers>& camera_numbers,
+                                 const std::vector<VertexNumbers>& light_numbers, const AreaLightHit* area,
+                                 PathStats& stats) {
+    StrategyResult r;
+    const Scene& scene = c.scene;
+    if (s == 0) {
+        // The camera subpath's own end: an emitter it hit (or an area light it passed on segment t − 1).
+        PathVertex area_vertex;
+        const PathVertex* end = area ? nullptr : &z[size_t(t - 1)];
+        if (area) {
+            const AreaLight& al = std::get<AreaLight>(scene.lights()[area->light]);
+            area_vertex.kind = VertexKind::Light;
+            area_vertex.p = area->p;
+            area_vertex.ng = al.normal;
+            area_vertex.emitter = int32_t(area->light);
+            area_vertex.Le = al.radiance;
+            area_vertex.beta = area->beta;
+            area_vertex.pdf_fwd = area->pdf_fwd;
+            end = &area_vertex;
+        }
+        if (emitter_of(*end) < 0) return r;
+        r.L = end->beta * emitted(c, *end);
+        if (is_black(r.L)) return r;
+        r.weight = strategy_weight(c, y, 0, z, t, nullptr, area ? &area_vertex : nullptr);
+        return r;
+    }
+    if (t == 1) {
+        // A connection from light vertex s − 1 to a fresh lens point, splatted where it lands.
+        const PathVertex& qs = y[size_t(s - 1)];
+        if (qs.infinite || (qs.kind == VertexKind::Surface && !scene.visible_to(qs.hit, k_ray_camera))) return r;
+        CameraConnection conn;
+        if (!scene.camera().connect(qs.p, light_numbers[size_t(s - 1)].u_point, &conn, c.camera_margin())) return r;
+        PathVertex cam;
+        cam.kind = VertexKind::Camera;
+        cam.p = conn.lens_point;
+        cam.pdf_fwd = conn.pdf_pos;
+        Color f;
+        float cosine;
+        if (qs.kind == VertexKind::Light) {
+            f = light_radiance(c.emitters[size_t(qs.emitter)], emitter_point(qs, conn.wi), conn.wi);
+            cosine = qs.on_surface() ? std::fabs(dot(conn.wi, qs.ng)) : 1.f;
+        } else {
+            f = qs.bsdf->f(conn.wi, qs.w);
+            cosine = std::fabs(dot(conn.wi, qs.ng)) * qs.bsdf->adjoint_factor(conn.wi, qs.w);
+            if (scene.has_holdouts()) cosine *= 1.f - scene.holdout(qs.hit, conn.wi);
+        }
+        r.L = qs.beta * f * (cosine * conn.importance);
+        if (is_black(r.L) || !visible(scene, qs, cam, k_ray_camera, stats)) return StrategyResult();
+        r.splat = true;
+        r.raster = conn.raster;
+        r.weight = strategy_weight(c, y, s, z, 1, &cam, nullptr);
+        return r;
+    }
+    const PathVertex& pt = z[size_t(t - 1)];
+    if (pt.kind != VertexKind::Surface) return r;
+    if (s == 1) {
+        // A fresh point on an emitter, connected to camera vertex t − 1 (next-event estimation in area measure).
+        const VertexNumbers& u = camera_numbers[size_t(t - 1)];
+        float pmf = 0.f;
+        if (c.emitters.empty()) return r;
+        const uint32_t e = c.emitters.select(u.u_select, &pmf);
+        if (!(pmf > 0.f)) return r;
+        const Light& light = c.emitters[e];
+        const EmitterPoint ep = light_sample_point(light, u.u_point, u.u_point, 0.5f);
+        if (!ep.valid()) return r;
+        PathVertex lv;
+        lv.kind = VertexKind::Light;
+        lv.emitter = int32_t(e);
+        lv.infinite = ep.infinite;
+        lv.p = ep.infinite ? Vec3(0.f) : ep.p;
+        lv.ng = ep.n;
+        lv.w = ep.omega;
+        lv.Le = ep.Le;
+        lv.hit.b1 = ep.b1;
+        lv.hit.b2 = ep.b2;
+        lv.delta_light = !light_hittable(light);
+        lv.pdf_fwd = pmf * ep.pdf_pos;
+        const Vec3 w_l = direction(pt, lv);
+        const Color f = pt.bsdf->f(pt.w, w_l);
+        if (is_black(f)) return r;
+        const Color Le = light_radiance(light, ep, -w_l);
+        if (is_black(Le)) return r;
+        float g = pt.bsdf->camera_cosine(pt.w, w_l);
+        if (!ep.infinite) {
+            const float d2 = length_squared(lv.p - pt.p);
+            g /= d2;
+            if (!ep.delta_pos) g *= std::fabs(dot(ep.n, w_l));
+        }
+        r.L = pt.beta * f * Le * (g / (pmf * ep.pdf_pos));
+        if (!visible(scene, pt, lv, k_ray_shadow, stats)) return StrategyResult();
+        r.weight = strategy_weight(c, y, 1, z, t, &lv, nullptr);
+        return r;
+    }
+    // s ≥ 2, t ≥ 2: join light vertex s − 1 and camera vertex t − 1.
+    const PathVertex& qs = y[size_t(s - 1)];
+    if (qs.kind != VertexKind::Surface) return r;
+    const Vec3 w = normalize(pt.p - qs.p);  // from the light vertex toward the camera vertex
+    const Color f_light = qs.bsdf->f(w, qs.w);
+    if (is_black(f_light)) return r;
+    const Color f_camera = pt.bsdf->f(pt.w, -w);
+    if (is_black(f_camera)) return r;
+    const float d2 = length_squared(pt.p - qs.p);
+    const float g = std::fabs(dot(w, qs.ng)) * qs.bsdf->adjoint_factor(w, qs.w) * pt.bsdf->camera_cosine(pt.w, -w) / d2;
+    r.L = qs.beta * f_light * f_camera * pt.beta * g;
+    if (is_black(r.L) || !visible(scene, qs, pt, k_ray_shadow, stats)) return StrategyResult();
+    r.weight = strategy_weight(c, y, s, z, t, nullptr, nullptr);
+    return r;
+}
+
+}  // namespace candela
