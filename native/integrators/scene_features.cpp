@@ -15,7 +15,8 @@ std::string unhonoured_features_note(const std::string& integrator, uint32_t hon
          "the Light Path node's outputs are not defined for its paths and read 0 (Is Camera Ray, Is Shadow Ray, Is "
          "Diffuse Ray, Is Glossy Ray, the depths, Ray Length)");
     note(k_feature_transparent_shadows, scene.has_transparent_materials(),
-         "Transparent surfaces block its shadow rays and connections (no transparent shadows)");
+         "Transparent surfaces block its shadow rays and connections (no transparent shadows) and its paths count "
+         "passing through them as bounces");
     note(k_feature_terminator_offset, scene.has_terminator_offsets(),
          "the shadow terminator offset of smooth meshes is not applied");
     note(k_feature_motion_blur, scene.has_motion(), "motion blur is not rendered: everything is at the shutter's middle");
