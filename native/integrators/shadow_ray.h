@@ -27,14 +27,17 @@ constexpr float k_shadow_epsilon = 1e-4f;
 
 /// True if something blocks the light sample `ls` seen from `hit`; `origin` is hit.p offset to the side wi leaves
 /// from (offset_ray_origin with the geometric normal flipped to that side). Distant lights (infinite dist) are
-/// tested along wi to infinity.
-inline bool shadow_ray_blocked(const Scene& scene, const SurfaceHit& hit, const Vec3& origin, const LightSample& ls) {
-    if (!std::isfinite(ls.dist)) return scene.occluded(origin, ls.wi, std::numeric_limits<float>::infinity(), hit.primitive);
+/// tested along wi to infinity. `skip_self` false: the ray may hit hit's own triangle (a terminator-offset shadow ray
+/// toward a light below the facet, which Cycles lets its own facet block).
+inline bool shadow_ray_blocked(const Scene& scene, const SurfaceHit& hit, const Vec3& origin, const LightSample& ls,
+                               bool skip_self = true) {
+    const PrimitiveRef skip = skip_self ? hit.primitive : PrimitiveRef{};
+    if (!std::isfinite(ls.dist)) return scene.occluded(origin, ls.wi, std::numeric_limits<float>::infinity(), skip);
     // The segment origin + t·to_light, t ∈ [0, 1 − ε]: Embree takes an unnormalised direction (t is then a fraction
     // of the segment), which saves normalising it.
     const Vec3 to_light = (hit.p + ls.wi * ls.dist) - origin;
     if (!(length_squared(to_light) > 0.f)) return false;
-    return scene.occluded(origin, to_light, 1.f - k_shadow_epsilon, hit.primitive);
+    return scene.occluded(origin, to_light, 1.f - k_shadow_epsilon, skip);
 }
 
 /// How a shadow ray treats transparent surfaces (Cycles' transparent shadows): the Light Path inputs it is shaded
@@ -48,14 +51,16 @@ struct ShadowRayInputs {
 /// materials (exactly shadow_ray_blocked), else the product of the Transparent weights of the surfaces crossed
 /// (Scene::transmittance).
 inline Color shadow_ray_transmittance(const Scene& scene, const SurfaceHit& hit, const Vec3& origin,
-                                      const LightSample& ls, const ShadowRayInputs& in) {
-    if (!scene.has_transparent_materials()) return shadow_ray_blocked(scene, hit, origin, ls) ? Color(0.f) : Color(1.f);
-    if (!std::isfinite(ls.dist)) return scene.transmittance(origin, ls.wi, true, hit.primitive, in.path, in.max_surfaces);
+                                      const LightSample& ls, const ShadowRayInputs& in, bool skip_self = true) {
+    if (!scene.has_transparent_materials())
+        return shadow_ray_blocked(scene, hit, origin, ls, skip_self) ? Color(0.f) : Color(1.f);
+    const PrimitiveRef skip = skip_self ? hit.primitive : PrimitiveRef{};
+    if (!std::isfinite(ls.dist)) return scene.transmittance(origin, ls.wi, true, skip, in.path, in.max_surfaces);
     // The same end margin as shadow_ray_blocked: the segment stops (1 − ε) of the way to the light point.
     const Vec3 light_point = hit.p + ls.wi * ls.dist;
     const Vec3 end = origin + (light_point - origin) * (1.f - k_shadow_epsilon);
     if (!(length_squared(light_point - origin) > 0.f)) return Color(1.f);
-    return scene.transmittance(origin, end, false, hit.primitive, in.path, in.max_surfaces);
+    return scene.transmittance(origin, end, false, skip, in.path, in.max_surfaces);
 }
 
 /// The shadow-ray origin at `hit` for a light in direction wl leaving on the front (ng's side) or the back:

@@ -115,6 +115,8 @@ public:
     /// describe (Hanika 2021), blended in for light directions wl near the terminator; the hit point otherwise.
     Vec3 terminator_point(const SurfaceHit& hit, const Vec3& ns_side, const Vec3& ng_side, const Vec3& wl) const;
     bool has_terminator_offsets() const { return m_any_terminator_offset; }
+    /// Whether terminator_point can move `hit` (a smooth triangle of an object with a positive offset).
+    bool terminator_lifts(const SurfaceHit& hit) const;
     /// Whether the camera or some object moves over the shutter (motion blur).
     bool has_motion() const { return m_has_motion; }
 

@@ -40,16 +40,24 @@ Color Scene::transmittance(const Vec3& from, const Vec3& to, bool to_infinity, c
     }
 }
 
+bool Scene::terminator_lifts(const SurfaceHit& hit) const {
+    if (!m_any_terminator_offset) return false;
+    const Placement& pl = m_placements[hit.object];
+    const MeshShading& s = m_shading[pl.mesh];
+    return pl.terminator_offset > 0.f && !s.corners.empty() && !s.smooth.empty() && s.smooth[hit.primitive.prim];
+}
+
 Vec3 Scene::terminator_point(const SurfaceHit& hit, const Vec3& ns_side, const Vec3& ng_side, const Vec3& wl) const {
     if (!m_any_terminator_offset) return hit.p;
     const Placement& pl = m_placements[hit.object];
     const float cutoff = pl.terminator_offset;
     const MeshShading& s = m_shading[pl.mesh];
     const uint32_t prim = hit.primitive.prim;
-    if (!(cutoff > 0.f) || s.corners.empty() || s.smooth.empty() || !s.smooth[prim]) return hit.p;
-    // How much of the offset to apply: all of it for light directions near or past the smooth terminator, none
-    // for directions well above both the shading and the geometric horizon, with a linear blend between.
-    const float nl = std::fabs(dot(ns_side, wl)), ngl = std::fabs(dot(ng_side, wl));
+    if (!terminator_lifts(hit)) return hit.p;
+    // How much of the offset to apply (Cycles' shadow_ray_offset, signed cosines): all of it for light directions
+    // near or past the smooth terminator or below the facet, none for directions well above both the shading and
+    // the geometric horizon, with a linear blend between.
+    const float nl = dot(ns_side, wl), ngl = dot(ng_side, wl);
     const float amount = nl < cutoff ? clamp(2.f - (ngl + nl) / cutoff, 0.f, 1.f) : clamp(1.f - ngl / cutoff, 0.f, 1.f);
     if (!(amount > 0.f)) return hit.p;
     // Hanika 2021 ("Hacking the Shadow Terminator", Ray Tracing Gems II, ch. 4): the point moved onto the

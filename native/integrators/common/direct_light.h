@@ -87,18 +87,22 @@ inline __attribute__((always_inline)) DirectLightSample sample_direct_light(
     const LightSample ls = light_sample_li(scene.lights()[li], ctx, u, rules.light_pdf);
     if (!ls.valid() || (rules.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return out;
     const Vec3 wi_local = v.frame.to_local(ls.wi);
-    // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks).
+    // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks) — except, as in Cycles,
+    // for a light above the shading hemisphere but below the facet of a smooth triangle with a shadow terminator
+    // offset: the lifted shadow ray, which its own facet may block, decides (docs/light_paths.md).
     const float cos_g = dot(ls.wi, v.ng);
-    if (leaks(cos_g, wi_local.z)) return out;
+    const bool below_facet = leaks(cos_g, wi_local.z);
+    if (below_facet && !(wi_local.z > 0.f && cos_g < 0.f && scene.terminator_lifts(hit))) return out;
     const Color f = bsdf.f(wo_local, wi_local) * std::fabs(wi_local.z);
     if (is_black(f)) return out;
     ++rays;
-    const Vec3 origin = shadow_ray_origin(scene, hit, v.backfacing ? -hit.ns : hit.ns, v.ng, ls.wi, cos_g > 0.f, spawn);
+    const bool front = below_facet ? true : cos_g > 0.f;
+    const Vec3 origin = shadow_ray_origin(scene, hit, v.backfacing ? -hit.ns : hit.ns, v.ng, ls.wi, front, spawn);
     Color through(1.f);
     if (shadow && scene.has_transparent_materials()) {
-        through = shadow_ray_transmittance(scene, hit, origin, ls, *shadow);
+        through = shadow_ray_transmittance(scene, hit, origin, ls, *shadow, !below_facet);
         if (is_black(through)) return out;
-    } else if (shadow_ray_blocked(scene, hit, origin, ls)) {
+    } else if (shadow_ray_blocked(scene, hit, origin, ls, !below_facet)) {
         return out;
     }
     const int k = rules.light_samples;
