@@ -129,6 +129,27 @@ def _blackbody(nt, temperature):
     return b.outputs["Color"]
 
 
+def _wavelength(nt, value):
+    w = node(nt, "ShaderNodeWavelength")
+    nt.links.new(value, w.inputs["Wavelength"])
+    return w.outputs["Color"]
+
+
+def object_info_output(name):
+    return lambda nt, coord: node(nt, "ShaderNodeObjectInfo").outputs[name]
+
+
+def light_path_output(name):
+    return lambda nt, coord: node(nt, "ShaderNodeLightPath").outputs[name]
+
+
+def camera_only_world(nt, coord):
+    """A Light Path trick: the camera sees a white world, everything else is lit by a blue one."""
+    mix = node(nt, "ShaderNodeMixRGB", Color1=(0.1, 0.2, 0.8, 1.0), Color2=(1.0, 1.0, 1.0, 1.0))
+    nt.links.new(node(nt, "ShaderNodeLightPath").outputs["Is Camera Ray"], mix.inputs["Fac"])
+    return mix.outputs["Color"]
+
+
 def hue_saturation(nt, coord):
     n = tex("ShaderNodeTexNoise", "Color", Scale=3.0)(nt, coord)
     h = node(nt, "ShaderNodeHueSaturation", Hue=0.3, Saturation=1.6, Value=1.2, Fac=0.8)
@@ -335,6 +356,13 @@ NODE_SCENES = {
     "node_float_curve": ("PLANE", curves("ShaderNodeFloatCurve", tex("ShaderNodeTexNoise", Scale=2.0), "Value",
                                          _edit_float)),
     "node_object_info_index": ("PLANE", object_index),
+    "node_object_info_color": ("PLANE", object_info_output("Color")),
+    "node_object_info_alpha": ("PLANE", object_info_output("Alpha")),
+    "node_object_info_random": ("PLANE", object_info_output("Random")),
+    "node_texcoord_window": ("PLANE", coord_output("Window")),
+    "node_wavelength": ("PLANE", lambda nt, c: _wavelength(nt, map_range("LINEAR", To_Min=380.0, To_Max=780.0)(nt, c))),
+    "node_light_path_ray_length": ("SPHERE", scaled(light_path_output("Ray Length"), 0.2)),
+    "world_light_path_camera": ("SKY_LIT", camera_only_world),
     "bump_plane_lit": ("PLANE_LIT", (tex("ShaderNodeTexNoise", Scale=3.0, Detail=2.0), False)),
     "displacement_plane_lit": ("PLANE_LIT", (tex("ShaderNodeTexWave", Scale=1.5, Distortion=1.0), True)),
     "node_bump_noise": ("PLANE", bumped(tex("ShaderNodeTexNoise", Scale=3.0, Detail=1.0), distance=0.2)),
@@ -573,4 +601,5 @@ def build_node_scene_geometry(name, scene, geometry, mat):
         _camera(scene, (0.0, -4.5, 0.6), (82.0, 0.0, 0.0), lens=60.0)
     me.materials.append(mat)
     ob.pass_index = 3
+    ob.color = (0.9, 0.45, 0.2, 0.6)   # Object Info > Color and Alpha
     scene.collection.objects.link(ob)
