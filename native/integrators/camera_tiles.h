@@ -48,6 +48,7 @@ inline int camera_max_pass(const Film& film, const PixelSampling& ps) {
 struct SplatSink {
     SplatBuffer* buffer;
     uint32_t replicate;  // of the camera sample whose path makes the splats
+    int x, y;            // the camera sample's full-frame pixel
 };
 template <class Tracer, class = void>
 struct splats_from_camera : std::false_type {};
@@ -141,7 +142,7 @@ private:
             Color L;
             if constexpr (k_group_size > 1) L = m_tracer.Li(rays[j], hits[j], sampler, stats, &alpha, aov_out);
             else if constexpr (splats_from_camera<Tracer>::value)
-                L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out, SplatSink{splats, replicate});
+                L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out, SplatSink{splats, replicate, fx, fy});
             else L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out);
             ++stats.paths;
             acc.add(checked_radiance(L, fx, fy, s, stats), alpha, replicate);

@@ -3,6 +3,8 @@
 #include "core/error.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/bdpt_settings.h"
+#include "integrators/generators/generator_integrator.h"
+#include "integrators/generators/generator_settings.h"
 #include "integrators/light/light_integrator.h"
 #include "integrators/light/light_settings.h"
 #include "integrators/path/path_integrator.h"
@@ -22,6 +24,18 @@ const std::vector<IntegratorEntry>& integrator_registry() {
          "Bidirectional path tracing: camera and light subpaths joined by every (s, t) strategy, weighted by multiple "
          "importance sampling (Veach 1997, ch. 10)",
          &make_bdpt_integrator, &BdptSettings::specs, &bdpt_integrator_memory},
+        {"SURFACE_SAMPLING", "Surface Sampling",
+         "The course's surface-sampling generator: indirect light from a point on a light and a point on any surface, "
+         "joined by two visibility checks (direct light by next-event estimation, mirrors and glass by ray tracing)",
+         &make_surface_sampling_integrator, &GeneratorSettings::specs},
+        {"SOURCE_SHOOTING", "Source Shooting",
+         "The course's source-shooting generator: indirect light from a ray shot from a light, its hits connected to "
+         "the visible point (direct light by next-event estimation, mirrors and glass by ray tracing)",
+         &make_source_shooting_integrator, &GeneratorSettings::specs},
+        {"RECEIVER_GATHERING", "Receiver Gathering",
+         "The course's receiver-gathering generator: indirect light from a ray shot from the visible point, its hit "
+         "connected to a point on a light (direct light by next-event estimation, mirrors and glass by ray tracing)",
+         &make_receiver_gathering_integrator, &GeneratorSettings::specs},
     };
     return registry;
 }

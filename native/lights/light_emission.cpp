@@ -250,6 +250,11 @@ Color light_radiance(const Light& light, const EmitterPoint& pt, const Vec3& d) 
         light);
 }
 
+float light_center_direction_pdf(const Light& light, const Vec3& d) {
+    if (const auto* point = std::get_if<PointLight>(&light)) return point_direction_pdf(point->spot, d);
+    return std::holds_alternative<SunLight>(light) ? 1.f : 0.f;
+}
+
 bool light_hittable(const Light& light) {
     return std::holds_alternative<AreaLight>(light) || std::holds_alternative<TriangleLight>(light) ||
            std::holds_alternative<WorldLight>(light);

@@ -87,6 +87,12 @@ Color light_radiance(const Light& l, const EmitterPoint& pt, const Vec3& d);
 /// — are reached only by connecting to them.
 bool light_hittable(const Light& l);
 
+/// For lights no ray can hit, the density of an emitted ray's direction d as if it left the light's centre: point
+/// and spot lights the direction density of light_sample_le (whatever their radius), the sun 1 (its direction
+/// taken as a delta); 0 for the others. Strategies that reach such a light at different points of it (next-event
+/// estimation's disk, emission's sphere) weigh their paths by this one function of the light and the direction.
+float light_center_direction_pdf(const Light& l, const Vec3& d);
+
 /// The light's flux Φ (luminance) as light_sample_le emits it: the spot's true cone integral, the world through
 /// the bounding disk. For textured triangles, the flux of their `radiance` (an estimate).
 float light_emitted_power(const Light& l, const SceneSphere& bounds);

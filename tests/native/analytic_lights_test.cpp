@@ -33,21 +33,10 @@
 
 #include "core/math.h"
 #include "test_helpers.h"
+#include "reference_scenes.h"
 
 namespace candela::test {
 namespace {
-
-/// E/L at x (normal n) from a polygon of uniform radiance entirely above x's horizon (Lambert's formula,
-/// docs/verification.md §2.4): ½·|Σ βᵢ (n·uᵢ)|.
-double polygon_irradiance(const std::vector<Vec3>& poly, Vec3 x, Vec3 n) {
-    double sum = 0.0;
-    for (size_t i = 0; i < poly.size(); ++i) {
-        const Vec3 a = normalize(poly[i] - x), b = normalize(poly[(i + 1) % poly.size()] - x);
-        const double beta = std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0));
-        sum += beta * double(dot(n, normalize(cross(a, b))));
-    }
-    return 0.5 * std::fabs(sum);
-}
 
 /// E/L at x (normal n) from a closed convex emissive mesh: its facets that face x tile its silhouette.
 double convex_mesh_irradiance(const MeshBuilder& b, Vec3 offset, Vec3 centre, Vec3 x, Vec3 n) {

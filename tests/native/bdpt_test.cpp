@@ -13,71 +13,13 @@
 #include "agreement.h"
 #include "core/math.h"
 #include "lights/light.h"
+#include "reference_scenes.h"
 
 namespace candela::test {
 namespace {
 
 constexpr int k_seeds = 12;
 
-std::vector<float> at(float x, float y, float z) { return {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z, 0, 0, 0, 1}; }
-
-/// A room: diffuse walls (open toward a dim world through a window), a rough glossy sphere and — with `specular` — a
-/// glass sphere on the floor and a mirror; lit by `lights` (a bit mask: 1 point, 2 soft point, 4 spot, 8 sun, 16 soft
-/// sun, 32 disk area light, 64 rectangle area light, 128 emissive triangle, 256 constant world).
-///
-/// Lights no ray can hit (point, spot, sun) light the floor through the glass and the mirror along paths a path
-/// tracer cannot build (after a delta bounce it would have to hit the light): BDPT renders those caustics and PATH
-/// does not, so the agreement with PATH is tested for them without the specular objects.
-SceneArrays lit_room(unsigned lights, bool specular) {
-    MeshBuilder b;
-    const uint32_t wall = b.add_material(Color(0.6f, 0.55f, 0.5f), Color(0.f));
-    const uint32_t glass = b.add_material(Color(0.f), Color(0.f));
-    b.add_closure(glass, "GLASS", {{"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}, {"ior", 1.5f}});
-    const uint32_t mirror = b.add_material(Color(0.f), Color(0.f));
-    b.add_closure(mirror, "GLOSSY", {{"color_r", 0.9f}, {"color_g", 0.9f}, {"color_b", 0.9f}, {"roughness", 0.f}});
-    const uint32_t glossy = b.add_material(Color(0.f), Color(0.f));
-    b.add_closure(glossy, "GLOSSY", {{"color_r", 0.8f}, {"color_g", 0.6f}, {"color_b", 0.4f}, {"roughness", 0.35f}});
-    const uint32_t lamp = b.add_material(Color(0.f), Color(4.f));
-    // Floor, back wall, left wall; the room is open to the right, the top and behind the camera (a dim world).
-    b.add_instance(b.add_quad_z(-2.f, 2.f, -1.5f, 1.5f, -3.f, wall));
-    const std::vector<float> floor = {1, 0, 0, 0, 0, 0, 1, -1.2f, 0, -1, 0, -1.5f, 0, 0, 0, 1};
-    b.add_instance(b.add_quad_z(-2.f, 2.f, -1.5f, 1.5f, 0.f, wall), floor.data());
-    const std::vector<float> left = {0, 0, 1, -1.8f, 0, 1, 0, 0, -1, 0, 0, -1.5f, 0, 0, 0, 1};
-    b.add_instance(b.add_quad_z(-1.5f, 1.5f, -1.5f, 1.5f, 0.f, wall), left.data());
-    const std::vector<float> g = at(0.5f, -0.8f, -1.8f), s = at(-0.8f, -0.85f, -2.2f);
-    if (specular) b.add_instance(b.add_sphere(0.4f, 24, 12, glass), g.data());
-    b.add_instance(b.add_sphere(0.35f, 24, 12, glossy), s.data());
-    const std::vector<float> m = {0.7f, 0, 0.7f, -1.3f, 0, 1, 0, 0.3f, -0.7f, 0, 0.7f, -2.5f, 0, 0, 0, 1};
-    if (specular) b.add_instance(b.add_quad_z(-0.4f, 0.4f, -0.4f, 0.4f, 0.f, mirror), m.data());
-    if (lights & 1) b.add_point_light(Vec3(0.6f, 0.7f, -1.6f), Color(6.f));
-    if (lights & 2) b.add_point_light(Vec3(-0.5f, 0.8f, -1.4f), Color(6.f), 0.15f);
-    if (lights & 4) {
-        std::vector<float> spot(light_columns().size(), 0.f);
-        for (int c = 0; c < 3; ++c) spot[c] = 25.f;
-        spot[3] = 0.3f, spot[4] = 1.2f, spot[5] = -1.5f;
-        const Vec3 d = normalize(Vec3(0.1f, -1.f, -0.2f));
-        spot[6] = d.x, spot[7] = d.y, spot[8] = d.z;
-        spot[16] = 1.f, spot[17] = 0.2f;
-        b.add_light(1, spot);
-    }
-    if (lights & (8 | 16)) {
-        std::vector<float> sun(light_columns().size(), 0.f);
-        for (int c = 0; c < 3; ++c) sun[c] = 2.f;
-        const Vec3 d = normalize(Vec3(-0.6f, -0.7f, -0.3f));
-        sun[6] = d.x, sun[7] = d.y, sun[8] = d.z;
-        sun[18] = (lights & 16) ? 0.2f : 0.f;
-        b.add_light(2, sun);
-    }
-    if (lights & 32)
-        b.add_area_light(Vec3(0.f, 1.2f, -1.8f), Vec3(0.7f, 0.f, 0.f), Vec3(0.f, 0.f, 0.5f), Vec3(0.f, -1.f, 0.f),
-                         Color(12.f), true);
-    if (lights & 64)
-        b.add_area_light(Vec3(1.f, 0.3f, -2.9f), Vec3(0.5f, 0.f, 0.f), Vec3(0.f, 0.4f, 0.f), Vec3(0.f, 0.f, 1.f),
-                         Color(10.f), false);
-    if (lights & 128) b.add_instance(b.add_triangle(Vec3(-1.f, 1.f, -2.f), Vec3(-0.4f, 1.f, -2.f), Vec3(-0.7f, 1.f, -2.6f), lamp));
-    if (lights & 256) b.world_color = {0.3f, 0.35f, 0.4f};
-    return b.arrays();
-}
 
 Params base_params(int w, int h) {
     Params p = basic_params(w, h, 0, 5);

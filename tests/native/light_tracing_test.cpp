@@ -15,6 +15,7 @@
 #include "core/math.h"
 #include "integrators/integrator.h"
 #include "lights/light.h"
+#include "reference_scenes.h"
 
 namespace candela::test {
 namespace {
@@ -124,30 +125,6 @@ TEST(LightTracing, ABorderRendersTheSamePixelsAsTheFullFrame) {
     const Agreement g = compare_seed_sets(a, b, 4);
     EXPECT_LT(std::fabs(g.mean_z), 4.0) << g.mean_a << " vs " << g.mean_b;
     EXPECT_LT(std::fabs(g.worst_block_z), 6.0) << g.worst_block;
-}
-
-/// A closed, coarsely tessellated sphere of albedo 0.5 with smooth (radial) shading normals, lit by a point light
-/// near its centre: the camera inside sees shading normals up to 23° off the facets'.
-SceneArrays smooth_lowpoly_sphere() {
-    MeshBuilder b;
-    const uint32_t m = b.add_material(Color(0.5f), Color(0.f));
-    const uint32_t mesh = b.add_sphere(1.f, 8, 6, m);
-    b.add_instance(mesh);
-    b.add_point_light(Vec3(0.2f, 0.1f, 0.3f), Color(20.f));
-    SceneArrays a = b.arrays();
-    const size_t T = b.triangles.size() / 3;
-    std::vector<float> normals;
-    std::vector<uint8_t> smooth(T, 1);
-    for (size_t t = 0; t < T; ++t)
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t v = b.triangles[3 * t + k];
-            const Vec3 p(b.positions[3 * v], b.positions[3 * v + 1], b.positions[3 * v + 2]);
-            const Vec3 n = normalize(p);
-            normals.insert(normals.end(), {n.x, n.y, n.z});
-        }
-    a.set("normals", ElemType::F32, {T, 3, 3}, normals.data());
-    a.set("tri_smooth", ElemType::U8, {T}, smooth.data());
-    return a;
 }
 
 /// A floor in front of the camera whose shading normal is tilted 0.6 rad toward a low point light: the incoming

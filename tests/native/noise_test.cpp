@@ -134,7 +134,12 @@ FilmRender render_film(const SceneArrays& arrays, const Params& params) {
             const size_t i = size_t(y) * w + x;
             r.lum.push_back(luminance(Color(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2])));
             const PixelAccum p = film.pixel(x, y);
-            r.replicate_var.push_back(replicate_variance_of_mean(p));
+            if (film.has_splats()) {
+                const double splat_samples[k_noise_replicates] = {film.splat_samples(0), film.splat_samples(1)};
+                r.replicate_var.push_back(replicate_variance_of_mean(p, film.splat(x, y), splat_samples));
+            } else {
+                r.replicate_var.push_back(replicate_variance_of_mean(p));
+            }
             r.moment_var.push_back(moment_variance_of_mean(p));
         }
     r.estimate = film.noise_estimate();
@@ -203,11 +208,12 @@ struct Agreement {
 
 /// `renders` renders (seeds 7, 8, …) of one configuration against the reference.
 Agreement agreement(const SceneArrays& arrays, const Reference& ref, const std::string& sampler, int spp, int renders,
-                    const std::string& light_sampling = "MIS") {
+                    const std::string& light_sampling = "MIS", const std::string& integrator = "PATH") {
     Agreement agree;
     for (int k = 0; k < renders; ++k) {
         Params p = test_params(spp, 7 + k, sampler);
-        p.set("light_sampling", light_sampling);
+        p.set("integrator", integrator);
+        if (integrator == "PATH") p.set("light_sampling", light_sampling);
         const FilmRender r = render_film(arrays, p);
         EXPECT_TRUE(std::isfinite(r.estimate.relative_rmse)) << "every replicate of every pixel has samples";
         agree.add(r, ref);
@@ -218,17 +224,19 @@ Agreement agreement(const SceneArrays& arrays, const Reference& ref, const std::
 /// The three checks of the header comment, for every sampler at 16 and 64 samples per pixel. For the samplers in
 /// `moments_fail`, the independent-sample estimate must fail them at 64 samples (the power check).
 void expect_honest(const char* scene, const SceneArrays& arrays, const std::vector<std::string>& samplers,
-                   int renders, const std::vector<std::string>& moments_fail = {}) {
+                   int renders, const std::vector<std::string>& moments_fail = {},
+                   const std::vector<std::string>& integrators = {"PATH"}) {
     const Reference ref = make_reference(arrays);
+    for (const std::string& integrator : integrators)
     for (const std::string& sampler : samplers)
         for (int spp : {16, 64}) {
-            const Agreement a = agreement(arrays, ref, sampler, spp, renders);
+            const Agreement a = agreement(arrays, ref, sampler, spp, renders, "MIS", integrator);
             const auto [rho, se] = a.ratio();
             const auto [rho_m, se_m] = a.ratio(true);
-            std::printf("%s %s %d spp: measured relative RMSE %.4f; estimate / measured %.3f ± %.3f "
+            std::printf("%s %s %s %d spp: measured relative RMSE %.4f; estimate / measured %.3f ± %.3f "
                         "(independent-sample estimate: %.3f ± %.3f)\n",
-                        scene, sampler.c_str(), spp, a.measured(), rho, se, rho_m, se_m);
-            const std::string what = std::string(scene) + " " + sampler + " " + std::to_string(spp) + " spp";
+                        scene, integrator.c_str(), sampler.c_str(), spp, a.measured(), rho, se, rho_m, se_m);
+            const std::string what = std::string(scene) + " " + integrator + " " + sampler + " " + std::to_string(spp) + " spp";
             EXPECT_LE(se, 1.0 / 16.0) << what << ": too few pixels or renders to resolve 25 %";
             EXPECT_NEAR(rho, 1.0, 4.0 * se) << what << ": the estimate is biased";
             EXPECT_NEAR(rho, 1.0, 0.25) << what << ": the estimate is not within 25 % of the measured error";
@@ -248,6 +256,14 @@ TEST(NoiseEstimate, IsHonestForEverySamplerOnTheRoom) { expect_honest("room", ro
 // sampler.
 TEST(NoiseEstimate, IsHonestForEverySamplerOnTheSoftShadow) {
     expect_honest("soft shadow", soft_shadow(), k_samplers, 1, {"STRATIFIED", "NROOKS", "SOBOL"});
+}
+
+// Light tracing and BDPT splat into the film (their splats are counted in the replicates they belong to), and the
+// generators share one light path or surface point between a camera sample's receivers: the estimate must stay
+// honest for each of them too.
+TEST(NoiseEstimate, IsHonestForLightTracingBdptAndThePathGenerators) {
+    expect_honest("room", room(), {"RANDOM", "SOBOL"}, 1, {},
+                  {"LIGHT", "BDPT", "SURFACE_SAMPLING", "SOURCE_SHOOTING", "RECEIVER_GATHERING"});
 }
 
 TEST(NoiseEstimate, IsHonestOnTheGlossyScene) { expect_honest("glossy", glossy_room(), {"RANDOM", "SOBOL"}, 1); }

@@ -30,6 +30,7 @@
 #include "core/math.h"
 #include "scene/scene.h"
 #include "test_helpers.h"
+#include "reference_scenes.h"
 
 namespace candela::test {
 namespace {
@@ -38,56 +39,6 @@ constexpr int k_width = 128, k_height = 72;
 constexpr int k_plates = 4;
 const char* const k_plate_names[k_plates] = {"smooth (α 0.01)", "glossy (α 0.05)", "rough (α 0.1)",
                                              "super rough (α 0.25)"};
-
-/// Row-major 4×4 from Mitsuba's 3×4 toWorld rows.
-std::array<float, 16> rows(std::array<float, 12> m) {
-    return {m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11], 0, 0, 0, 1};
-}
-
-/// The scene in Mitsuba's Y-up coordinates (the renderer has no preferred up). Materials 0–3 are the plates.
-SceneArrays veach_scene(std::vector<float>* camera) {
-    MeshBuilder b;
-    const float alphas[k_plates] = {0.01f, 0.05f, 0.1f, 0.25f};
-    const std::array<float, 12> plate_rows[k_plates] = {
-        {0.805757f, 0.0961775f, 0, 0.264069f, -0.673242f, 0.115108f, 0, 4.09801f, 0, 0, 4, 0},
-        {0.972057f, 0.0567134f, 0, 3.06163f, -0.396994f, 0.138865f, 0, 2.71702f, 0, 0, 4, 0},
-        {1.03191f, 0.0277252f, 0, 7.09981f, -0.194077f, 0.147415f, 0, 1.81891f, 0, 0, 4, 0},
-        {1.04217f, 0.0182831f, 0, 10.6769f, -0.127982f, 0.148882f, 0, 1.23376f, 0, 0, 4, 0}};
-    for (int i = 0; i < k_plates; ++i) {
-        const uint32_t m = b.add_material(Color(0.f), Color(0.f));
-        // Cycles' Glossy BSDF: α = roughness²; distribution 1 = Beckmann.
-        b.add_closure(m, "GLOSSY",
-                      {{"color_r", 0.3f}, {"color_g", 0.3f}, {"color_b", 0.3f}, {"roughness", std::sqrt(alphas[i])},
-                       {"distribution", 1.f}});
-        const auto t = rows(plate_rows[i]);
-        b.add_instance(b.add_box(Vec3(1.f), m), t.data());
-    }
-    const uint32_t backdrop = b.add_material(Color(0.5f), Color(0.f));
-    const auto floor = rows({9.9f, 0, 0, 4.9f, 0, -4.32743e-7f, 9.9f, 0, 0, -23.76f, -1.03858e-6f, 0});
-    const auto wall = rows({-4.32743e-7f, -4.32743e-7f, 9.9f, -5, -9.9f, 1.89158e-14f, -4.32743e-7f, 9.9f, 0, -23.76f,
-                            -1.03858e-6f, 0});
-    b.add_instance(b.add_quad_z(-1.f, 1.f, -1.f, 1.f, 0.f, backdrop), floor.data());
-    b.add_instance(b.add_quad_z(-1.f, 1.f, -1.f, 1.f, 0.f, backdrop), wall.data());
-    const float radii[4] = {0.9f, 0.3f, 0.1f, 0.03333f}, z[4] = {-3.75f, -1.25f, 1.25f, 3.75f};
-    for (int i = 0; i < 4; ++i) {
-        const uint32_t lamp = b.add_material(Color(0.f), Color(7.59909f / (radii[i] * radii[i])));
-        const auto at = rows({1, 0, 0, 0, 0, 1, 0, 6.5f, 0, 0, 1, z[i]});
-        b.add_instance(b.add_sphere(radii[i], 32, 16, lamp), at.data());
-    }
-    // Mitsuba's camera at (28.2792, 3.5, 0) looking −x, +y up.
-    *camera = look_at(Vec3(28.2792f, 3.5f, 0.f), Vec3(0.f, 3.5f, 0.f), Vec3(0.f, 1.f, 0.f));
-    return b.arrays(camera->data());
-}
-
-Params veach_params() {
-    Params p = basic_params(k_width, k_height, 1, 0);
-    // fov 35° across x: lens = 18 mm / tan(17.5°) on a 36 mm sensor fitted horizontally.
-    p.set("sensor_fit", std::string("HORIZONTAL"));
-    p.set("sensor_width", 36.0);
-    p.set("lens", 18.0 / std::tan(17.5 * k_pi / 180.0));
-    p.set("clip_start", 0.01);
-    return p;
-}
 
 /// Per pixel: the plate (0–3) its centre and its four corners all see, or −1.
 std::vector<int> plate_masks(const Scene& scene) {
@@ -160,7 +111,7 @@ PlateStats plate_stats(const SeedMoments& m, const std::vector<int>& mask, int p
 TEST(VeachMis, StrategiesAgreeAndMisHasTheLeastVarianceOnEveryPlate) {
     std::vector<float> camera;
     SceneArrays arrays = veach_scene(&camera);
-    const PreparedScene scene(std::move(arrays), veach_params());
+    const PreparedScene scene(std::move(arrays), veach_params(k_width, k_height));
     const std::vector<int> mask = plate_masks(scene.scene());
 
     constexpr int k_seeds = 8;

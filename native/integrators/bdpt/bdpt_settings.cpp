@@ -13,6 +13,15 @@ const std::vector<ParamSpec>& BdptSettings::specs() {
                    {{"BALANCE", "Balance", "Balance heuristic over all strategies (Veach 1997, eq. 10.9 with β = 1)"},
                     {"POWER", "Power", "Power heuristic with exponent 2 over all strategies (Veach 1997, ch. 10)"}},
                    "How the estimates of all (s, t) strategies of a path are weighted", "Bidirectional"),
+        bool_param("bdpt_strategy_images", "Strategy Images", false,
+                   "Also write, for every path depth up to Strategy Depth and every (s, t) strategy, its weighted and "
+                   "unweighted contribution as render passes (BDPT d1 s1 t2, ...): which strategy carries which light",
+                   "Bidirectional"),
+        active_if(int_param("bdpt_strategy_depth", "Strategy Depth", 2, 0, 4,
+                            "The deepest path depth (bounces) with strategy images; depth d has d + 2 strategies, two "
+                            "images each, 48 bytes per pixel per strategy",
+                            "Bidirectional"),
+                  "bdpt_strategy_images==True"),
     };
     return specs;
 }
@@ -25,6 +34,8 @@ BdptSettings BdptSettings::from_params(const Params& params) {
     s.rr_mode = parse_rr_mode(read.get_enum("rr_mode"));
     s.rr_start_bounce = read.get_int("rr_start_bounce");
     s.heuristic = read.get_enum("bdpt_mis") == "BALANCE" ? MisHeuristic::Balance : MisHeuristic::Power;
+    s.strategy_images = read.get_bool("bdpt_strategy_images");
+    s.strategy_depth = read.get_int("bdpt_strategy_depth");
     return s;
 }
 

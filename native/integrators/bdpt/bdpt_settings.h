@@ -17,6 +17,8 @@ struct BdptSettings {
     RouletteMode rr_mode = RouletteMode::Throughput;
     int rr_start_bounce = 3;
     MisHeuristic heuristic = MisHeuristic::Power;
+    bool strategy_images = false;  // bdpt_strategy_images (strategy_images.h)
+    int strategy_depth = 2;        // the deepest path depth with strategy images
 
     static BdptSettings from_params(const Params& params);
     static const std::vector<ParamSpec>& specs();

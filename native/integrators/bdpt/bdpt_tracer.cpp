@@ -24,6 +24,11 @@ struct Scratch {
 
 }  // namespace
 
+StrategyRecording& strategy_recording() {
+    thread_local StrategyRecording recording;
+    return recording;
+}
+
 Color BdptTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov,
                      SplatSink sink) const {
     *alpha = 1.f;
@@ -35,7 +40,10 @@ Color BdptTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
     const int ny = light_subpath(c, sampler, w.light, w.light_numbers, stats);
     const int max_depth = c.settings.max_bounces + 1;  // scattering vertices of a path: s + t − 2
     Color L(0.f);
-    auto add = [&](const StrategyResult& r) {
+    const StrategyRecording& rec = strategy_recording();
+    auto add = [&](const StrategyResult& r, int s, int t) {
+        if (rec.buffer && !is_black(r.L) && is_finite(r.L) && min_component(r.L) >= 0.f)
+            rec.images->record(*rec.buffer, s, t, r.L, r.weight, r.raster, r.splat, sink.x, sink.y);
         if (is_black(r.L) || !(r.weight > 0.f)) return;
         const Color weighted = r.L * r.weight;
         if (!is_finite(weighted) || min_component(weighted) < 0.f) {
@@ -54,13 +62,13 @@ Color BdptTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
             // (1, 1), an emitter connected to the lens, is left to (0, 2), the camera ray that sees it: its weight
             // would be tiny wherever the emitter is visible, and strategy_weight counts paths of two vertices as (0, 2)'s.
             if (depth < 0 || depth > max_depth || (s == 0 && t == 1) || (s == 1 && t == 1)) continue;
-            add(evaluate_strategy(c, w.light, s, w.camera, t, w.camera_numbers, w.light_numbers, nullptr, stats));
+            add(evaluate_strategy(c, w.light, s, w.camera, t, w.camera_numbers, w.light_numbers, nullptr, stats), s, t);
         }
     // The area lights the camera subpath passed: strategies s = 0 ending on them.
     for (const AreaLightHit& a : w.area_hits) {
         const int t = a.segment + 1;
         if (t - 2 > max_depth) continue;
-        add(evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats));
+        add(evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats), 0, t);
     }
     return L;
 }

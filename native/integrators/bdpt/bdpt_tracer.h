@@ -8,10 +8,19 @@
 #include <vector>
 
 #include "integrators/bdpt/strategy.h"
+#include "integrators/bdpt/strategy_images.h"
 #include "integrators/bdpt/subpaths.h"
 #include "integrators/camera_tiles.h"
 
 namespace candela {
+
+/// While set on a thread (by the integrator, around one tile), BdptTracer::Li records every strategy's
+/// contribution into `buffer` (strategy_images.h).
+struct StrategyRecording {
+    const StrategyImages* images = nullptr;
+    StrategyImages::Buffer* buffer = nullptr;
+};
+StrategyRecording& strategy_recording();
 
 class BdptTracer {
 public:

@@ -31,6 +31,12 @@ public:
         if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
             ctx.log("LIGHT: objects hidden from diffuse, glossy or transmission rays are visible to light paths "
                     "(only camera and shadow visibility are honoured)");
+        for (uint32_t k = 0; k < scene.materials().size(); ++k)
+            if (scene.material_flags(k) & k_bsdf_specular) {
+                ctx.log("LIGHT: surfaces the camera sees only through mirrors or glass stay black (a light path cannot "
+                        "connect to the camera through a delta lobe; only lights seen that way are drawn); use BDPT");
+                break;
+            }
         const SpecularCameraTracer camera_tracer(scene, m_settings);
         const CameraTilePass<SpecularCameraTracer> camera_pass(scene, film, ctx, m_settings.pixel, camera_tracer);
         const LightTracer tracer(scene, m_settings, emitters);

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "integrators/camera_hit.h"
+#include "integrators/common/light_walk.h"
 #include "integrators/common/roulette.h"
 #include "integrators/common/surface_vertex.h"
 #include "integrators/common/vertex_bsdf.h"
@@ -52,51 +53,15 @@ void LightTracer::trace(Sampler& sampler, int dim_bounce, uint32_t replicate, Sp
 template <class S>
 void LightTracer::trace_path(S& sampler, int dim_bounce, uint32_t replicate, SplatBuffer& splats,
                              PathStats& stats) const {
-    // The emitted ray: the emitter (LightSelect), its origin (Light), its direction (Bsdf), a triangle's side (lobe).
-    const BounceSample u0 = draw_bounce(sampler, dim_bounce, k_need_light_select | k_need_light | k_need_lobe);
-    uint32_t index = 0;
-    float pmf = 0.f;
-    const EmissionSample es = m_emitters.sample_le(u0.light_select, u0.light, u0.bsdf, u0.lobe, &index, &pmf);
-    ++stats.paths;
-    if (!es.valid() || !(pmf > 0.f)) return;
-    Color beta = es.weight() / pmf;
-    if (!is_finite(beta)) return;
-    Ray ray{(es.delta_pos || es.infinite) ? es.p : offset_ray_origin(es.p, es.n), es.d, 0.f, k_inf, k_ray_all};
-    PrimitiveRef from;
     const LightSettings& cfg = m_settings;
-    float beta_ref = 0.f, eta_scale = 1.f;
-    for (int depth = 1;; ++depth) {
-        SurfaceHit hit;
-        ++stats.rays;
-        if (!m_scene.intersect(ray, &hit, from)) return;
-        const Vec3 w_l = -ray.d;
-        const VertexBsdf vb(m_scene, hit, w_l, m_scene.shade(hit, w_l));
-        if (depth == 1) beta_ref = max_component(beta);
-        const bool last = depth > cfg.max_bounces;  // the path has max_bounces + 1 scattering vertices at most
-        const bool roulette_here = !last && cfg.rr_mode != RouletteMode::Off && depth >= cfg.rr_start_bounce;
-        const BounceSample u = draw_bounce(sampler, dim_bounce + depth,
-                                           k_need_light | k_need_lobe | (roulette_here ? k_need_roulette : 0u));
-        // Up to half the filter's support beyond the frame, as the camera rays of the border pixels reach.
-        connect_to_camera(m_scene, vb, w_l, beta, u.light, 0.5f * cfg.pixel.filter.support(), replicate, splats, stats);
-        if (last) return;
-        const VertexBsdf::Sample s = vb.sample_light(w_l, u.bsdf, u.lobe);
-        if (!s.valid()) return;
-        beta *= s.weight;
-        if (s.bsdf.is_transmission() && s.bsdf.eta > 0.f) eta_scale /= s.bsdf.eta * s.bsdf.eta;
-        if (roulette_here) {
-            // Survival from the throughput relative to the first vertex's (a light path's β is a flux, not ≤ 1).
-            const Color relative = beta * (eta_scale / beta_ref);
-            const float q = cfg.rr_mode == RouletteMode::Albedo ? min_num(1.f, max_component(s.weight))
-                            : cfg.rr_mode == RouletteMode::SqrtThroughput ? arrival_survival(relative, 1.f)
-                                                                           : min_num(1.f, max_component(relative));
-            if (!(q > 0.f) || u.roulette >= q) return;
-            beta /= q;
-        }
-        if (is_black(beta) || !is_finite(beta)) return;
-        const float cos_g = dot(s.w, hit.ng);
-        ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? hit.ng : -hit.ng), s.w, 0.f, k_inf, k_ray_all};
-        from = hit.primitive;
-    }
+    // The path has max_bounces + 1 scattering vertices at most.
+    const LightWalkRules rules{cfg.max_bounces + 1, cfg.rr_mode, cfg.rr_start_bounce};
+    // Up to half the filter's support beyond the frame, as the camera rays of the border pixels reach.
+    const float margin = 0.5f * cfg.pixel.filter.support();
+    walk_light_path(m_scene, m_emitters, rules, sampler, dim_bounce, stats, [](const EmissionSample&, uint32_t) {},
+                    [&](const VertexBsdf& vb, const Vec3& w_l, const Color& beta, int, const BounceSample& u) {
+                        connect_to_camera(m_scene, vb, w_l, beta, u.light, margin, replicate, splats, stats);
+                    });
 }
 
 Color SpecularCameraTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha,

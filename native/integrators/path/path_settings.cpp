@@ -30,36 +30,11 @@ const std::vector<ParamSpec>& PathSettings::specs() {
                      "Teaching option: direct light only by next-event estimation (shadow rays to sampled lights)"},
                     {"MIS", "Multiple Importance", "Both, combined by multiple importance sampling"}},
                    "Which estimators of direct light are used", "Light Sampling"),
-        active_if(enum_param("mis_heuristic", "MIS Heuristic", "POWER",
-                             {{"BALANCE", "Balance", "Balance heuristic (Veach 1997, eq. 9.12)"},
-                              {"POWER", "Power", "Power heuristic with exponent 2 (Veach 1997, eq. 9.13)"}},
-                             "How the two estimators of direct light are weighted", "Light Sampling"),
-                  "light_sampling==MIS"),
-        enum_param("light_selection", "Light Selection", "TREE",
-                   {{"ALL", "All", "Estimate every light at every vertex (one shadow ray per light)"},
-                    {"UNIFORM", "Uniform", "Teaching option: pick one light uniformly"},
-                    {"AREA", "Area", "Teaching option: pick one light in proportion to its emitting area"},
-                    {"POWER", "Power", "Pick one light in proportion to its power (Cycles 3.4's rule)"},
-                    {"TREE", "Light Tree",
-                     "Pick one light by a light hierarchy with bounds and orientation cones (favours nearby, facing, "
-                     "bright lights; scales to thousands of emitters)"},
-                    {"WARD", "Ward",
-                     "Pick lights in proportion to their maximum possible contribution at the point (Ward 1991)"}},
-                   "How next-event estimation chooses among many lights", "Light Sampling"),
-        active_if(float_param("ward_threshold", "Ward Threshold", 0.05, 0.0, 1e9,
-                              "Light Selection WARD: shadow-test lights in order of their largest possible "
-                              "contribution until the untested lights could add at most this fraction of the light "
-                              "found; the rest is estimated by one sampled light (unbiased). 0 tests every light",
-                              "Light Sampling", 1.0),
-                  "light_selection==WARD"),
-        enum_param("light_pdf", "Light PDF", "SOLID_ANGLE",
-                   {{"AREA", "Area", "Teaching option: sample points uniformly on the emitter's area"},
-                    {"SOLID_ANGLE", "Solid Angle",
-                     "Sample directions uniformly in the solid angle the emitter covers (spherical triangles and "
-                     "rectangles), with area sampling for tiny and huge solid angles"}},
-                   "How a point on an area light or emissive triangle is chosen", "Light Sampling"),
-        int_param("light_samples", "Light Samples", 1, 1, 256, "Shadow rays per path vertex (stratified)",
-                  "Light Sampling"),
+        mis_heuristic_spec("light_sampling==MIS"),
+        light_selection_spec(),
+        ward_threshold_spec(),
+        light_pdf_spec(),
+        light_samples_spec(),
         };
         for (ParamSpec& p : LightPathSettings::specs()) own.push_back(std::move(p));
         return own;
@@ -81,11 +56,7 @@ PathSettings PathSettings::from_params(const Params& params) {
     const std::string ls = read.get_enum("light_sampling");
     s.direct.light_sampling = ls == "BSDF_ONLY" ? LightSampling::BsdfOnly
                               : ls == "LIGHT_ONLY" ? LightSampling::LightOnly : LightSampling::Mis;
-    s.direct.mis_heuristic = read.get_enum("mis_heuristic") == "BALANCE" ? MisHeuristic::Balance : MisHeuristic::Power;
-    s.direct.light_pdf = parse_light_pdf_mode(read.get_enum("light_pdf"));
-    s.direct.light_samples = read.get_int("light_samples");
-    s.direct.ward_threshold = read.get_float("ward_threshold");
-    s.light_selection = read.get_enum("light_selection");
+    read_light_sampling_specs(read, &s.direct, &s.light_selection);
     s.branching_factor = read.get_int("branching_factor");
     return s;
 }
