@@ -29,6 +29,7 @@ enum SceneFeature : uint32_t {
     k_feature_transparent_shadows = 1u << 1,  // shadow rays and connections through Transparent surfaces
     k_feature_terminator_offset = 1u << 2,    // the shadow terminator geometry offset of smooth low-poly meshes
     k_feature_motion_blur = 1u << 3,          // camera and object motion over the shutter
+    k_feature_bump_shadowing = 1u << 4,       // the bump shadowing term at bent normals (bsdf/bsdf.h)
 };
 /// The log line for the features of `scene` that an integrator honouring `honoured` ignores ("" if none).
 std::string unhonoured_features_note(const std::string& integrator, uint32_t honoured, const Scene& scene);

@@ -19,6 +19,9 @@ std::string unhonoured_features_note(const std::string& integrator, uint32_t hon
          "passing through them as bounces");
     note(k_feature_terminator_offset, scene.has_terminator_offsets(),
          "the shadow terminator offset of smooth meshes is not applied");
+    note(k_feature_bump_shadowing, scene.has_bent_normals(),
+         "the bump shadowing term at Bump and Normal Map normals is not applied everywhere (its images of bumped "
+         "surfaces are brighter toward the terminator than PATH's)");
     note(k_feature_motion_blur, scene.has_motion(), "motion blur is not rendered: everything is at the shutter's middle");
     return what.empty() ? std::string() : integrator + ": " + what;
 }

@@ -53,7 +53,10 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
     m_material_inputs = load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg,
                                              &m_material_holdout);
     for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
-    for (const MaterialInputs& mi : m_material_inputs) m_has_holdouts |= mi.holdout_reg >= 0;
+    for (const MaterialInputs& mi : m_material_inputs) {
+        m_has_holdouts |= mi.holdout_reg >= 0;
+        m_any_bent_normal |= mi.normal_reg >= 0 && !mi.normal_is_displacement;
+    }
     m_threads = params.get<int>("threads", 0);
     m_material_flags.resize(m_materials.size(), 0u);
     for (size_t k = 0; k < m_materials.size(); ++k)

@@ -115,6 +115,8 @@ public:
     /// describe (Hanika 2021), blended in for light directions wl near the terminator; the hit point otherwise.
     Vec3 terminator_point(const SurfaceHit& hit, const Vec3& ns_side, const Vec3& ng_side, const Vec3& wl) const;
     bool has_terminator_offsets() const { return m_any_terminator_offset; }
+    /// Whether some material's normal comes from a Bump or Normal Map node (bump shadowing applies there).
+    bool has_bent_normals() const { return m_any_bent_normal; }
     /// Whether terminator_point can move `hit` (a smooth triangle of an object with a positive offset).
     bool terminator_lifts(const SurfaceHit& hit) const;
     /// Whether the camera or some object moves over the shutter (motion blur).
@@ -220,6 +222,7 @@ private:
     bool m_any_transparent = false;          // some material has a Transparent closure (transparent shadows)
     bool m_world_path_dependent = false;     // the world shader reads the Light Path node
     bool m_any_terminator_offset = false;    // some object has a shadow terminator offset
+    bool m_any_bent_normal = false;          // some material bends its normal (Bump, Normal Map): bump shadowing
     bool m_has_motion = false;               // motion blur: the camera or an object moves over the shutter
     Camera m_camera;
     std::vector<Material> m_materials;

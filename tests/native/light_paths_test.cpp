@@ -365,19 +365,16 @@ TEST(LightPathNode, IntegratorsThatCannotHonourItSaySo) {
 }
 
 TEST(LightPathNode, LightRootedIntegratorsSayWhatTheyDoNotHonour) {
-    // The registry's LIGHT and BDPT honour none of the camera-path features; PATH all but motion blur (not rendered
-    // by any integrator yet).
+    // The registry's LIGHT and BDPT honour none of the camera-path features but bump shadowing (VertexBsdf's); PATH
+    // all but motion blur (not rendered by any integrator yet).
     for (const char* name : {"LIGHT", "BDPT"}) {
         Params p = basic_params(4, 4, 1, 1);
         p.set("integrator", std::string(name));
-        EXPECT_EQ(make_integrator(p)->honoured_features() &
-                      (k_feature_light_path | k_feature_transparent_shadows | k_feature_terminator_offset),
-                  0u)
-            << name;
+        EXPECT_EQ(make_integrator(p)->honoured_features(), k_feature_bump_shadowing) << name;
     }
     Params p = basic_params(4, 4, 1, 1);
-    EXPECT_EQ(make_integrator(p)->honoured_features(),
-              k_feature_light_path | k_feature_transparent_shadows | k_feature_terminator_offset);
+    EXPECT_EQ(make_integrator(p)->honoured_features(), k_feature_light_path | k_feature_transparent_shadows |
+                                                           k_feature_terminator_offset | k_feature_bump_shadowing);
 }
 
 // ---- bump shadowing in every integrator ------------------------------------------------------------------------

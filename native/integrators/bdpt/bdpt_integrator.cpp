@@ -57,6 +57,8 @@ public:
             [&] { return film.noise_estimate(); });
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
+    // Its BSDF is VertexBsdf's, which applies bump shadowing (tests/native/light_paths_test.cpp).
+    uint32_t honoured_features() const override { return k_feature_bump_shadowing; }
 
 private:
     BdptSettings m_settings;
