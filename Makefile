@@ -8,7 +8,7 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib
 
-.PHONY: all deps build demo test bench microbench accuracy parity sampling-docs fuzz test-sanitize robustness-report install-addon clean test-native test-blender
+.PHONY: all deps build demo test bench microbench accuracy parity sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender
 
 all: build
 
@@ -55,6 +55,9 @@ parity: build
 
 # docs/sampling.md and docs/sampling/*.png: one picture, error and time per sampling technique (~15 minutes;
 # the scenes' references are cached in build/sampling/cache).
+bdpt-strategies: build
+	$(CLEAN_ENV) bin/candela-blender -b --factory-startup -noaudio --python-exit-code 1 --python examples/bdpt_strategies_picture.py
+
 sampling-docs: build
 	$(CLEAN_ENV) $(PYTHON) examples/sampling_gallery.py --build $(BUILD)
 

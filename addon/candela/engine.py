@@ -29,7 +29,7 @@ class CandelaRenderEngine(bpy.types.RenderEngine):
 
     def update_render_passes(self, scene=None, renderlayer=None):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", 'COLOR')
-        for p in passes.enabled_passes(renderlayer):
+        for p in passes.enabled_passes(renderlayer) + passes.strategy_passes(scene):
             self.register_pass(scene, renderlayer, p.name, p.channels, p.chan_id, p.pass_type)
 
 

@@ -171,7 +171,7 @@ def to_native_params(scene, camera_data, argv=None, camera_object=None, view_lay
     params.update(camera_params(camera_data))
     params.update(dof_params(camera_data, camera_object))
     if view_layer is not None:
-        params["passes"] = native_pass_list(view_layer)
+        params["passes"] = native_pass_list(view_layer, scene)
     params.update(cmdline.overrides(argv))
     if settings.use_animated_seed:
         # Deterministic per frame on every farm worker (never wall-clock based).

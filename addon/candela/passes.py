@@ -36,6 +36,18 @@ def enabled_passes(view_layer):
     return result
 
 
-def native_pass_list(view_layer):
+def strategy_passes(scene):
+    """BDPT's strategy images (one RGB pass per (depth, s, t), weighted and unweighted) when the scene renders with
+    BDPT and its Strategy Images setting is on: the setting is their toggle, so they need no entry in the panel."""
+    settings = getattr(scene, "candela", None) if scene is not None else None
+    if settings is None or getattr(settings, "integrator", "") != "BDPT" or \
+            not getattr(settings, "bdpt_strategy_images", False):
+        return []
+    from . import schema
+    depth = min(int(settings.bdpt_strategy_depth), int(settings.max_bounces) + 1)
+    return [RenderPass(name, 3, "RGB", 'COLOR', None, None) for name in schema.bdpt_strategy_passes(depth)]
+
+
+def native_pass_list(view_layer, scene=None):
     """The `passes` param: comma-separated pass names."""
-    return ",".join(p.name for p in enabled_passes(view_layer))
+    return ",".join(p.name for p in enabled_passes(view_layer) + strategy_passes(scene))

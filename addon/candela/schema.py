@@ -101,6 +101,12 @@ def shader_enum(key):
     return dict(_cap(key, {name: i for i, name in enumerate(SHADER_ENUMS[key])}))
 
 
+def bdpt_strategy_passes(depth):
+    """BDPT's strategy-image pass names for strategy depths 0..depth (native/integrators/bdpt/strategy_images.h)."""
+    table = native.capabilities().get("bdpt_strategy_passes") or {}
+    return tuple(str(n) for n in table.get(int(depth), ()))
+
+
 def integrators():
     """((name, description, label), ...) of the native registry (names only in the fallback)."""
     result = []

@@ -201,6 +201,9 @@ py::dict capabilities() {
     py::list passes;
     for (const auto& [name, channels] : Session::pass_names()) passes.append(py::make_tuple(name, channels));
     d["passes"] = passes;
+    py::dict strategy_passes;  // BDPT's strategy images by strategy depth (bdpt_strategy_depth's range)
+    for (int depth = 0; depth <= 4; ++depth) strategy_passes[py::int_(depth)] = Session::strategy_pass_names(depth);
+    d["bdpt_strategy_passes"] = strategy_passes;
     return d;
 }
 

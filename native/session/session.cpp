@@ -1,5 +1,7 @@
 #include "session/session.h"
 
+#include "integrators/bdpt/strategy_images.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -188,6 +190,13 @@ std::optional<std::string> Session::error() const {
 std::vector<std::string> Session::take_log() { return m_log.take(); }
 
 void Session::add_log(std::string message) { m_log.add(std::move(message)); }
+
+std::vector<std::string> Session::strategy_pass_names(int max_depth) {
+    std::vector<std::string> names;
+    for (const StrategyId& id : StrategyImages::strategies(max_depth))
+        for (bool unweighted : {false, true}) names.push_back(StrategyImages::name(id, unweighted));
+    return names;
+}
 
 std::vector<std::pair<std::string, int>> Session::pass_names() {
     std::vector<std::pair<std::string, int>> names = {{"Combined", 4}, {"Noise", 1}};

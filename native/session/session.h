@@ -73,6 +73,8 @@ public:
     /// Pass names get_pass understands and their channel counts (it returns a data pass only when the `passes`
     /// param asked for it).
     static std::vector<std::pair<std::string, int>> pass_names();
+    /// BDPT's strategy-image passes for strategy depths 0..max_depth (3 channels each; integrators/bdpt/strategy_images.h).
+    static std::vector<std::string> strategy_pass_names(int max_depth);
     /// A pass as float32 rows bottom to top, or empty if the name is unknown.
     std::vector<float> get_pass(const std::string& name, int* channels) const;
 

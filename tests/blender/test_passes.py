@@ -113,3 +113,27 @@ def test_native_params_list_the_passes():
     scene = plane_scene()
     params = to_native_params(scene, scene.camera.data, argv=["blender"], view_layer=bpy.context.view_layer)
     assert params["passes"].split(",") == ["Depth", "Normal", "Albedo", "IndexOB"]
+
+
+def test_bdpt_strategy_images_reach_the_multilayer_exr_and_sum_to_the_image(tmp_path):
+    """BDPT's Strategy Images: one RGB pass per (depth, s, t), weighted and unweighted, registered because the setting
+    is on; with a one-pixel box filter the weighted ones sum to Combined (integrators/bdpt/strategy_images.h)."""
+    scene = plane_scene()
+    scene.candela.integrator = 'BDPT'
+    scene.candela.bdpt_strategy_images = True
+    scene.candela.bdpt_strategy_depth = 2
+    scene.candela.max_bounces = 1          # paths of depth 0..2: all of them have images
+    scene.candela.pixel_filter = 'BOX'
+    scene.candela.filter_width = 1.0
+    channels = render_command_line(scene, tmp_path)
+    layer = bpy.context.view_layer.name
+    from candela import schema
+    names = schema.bdpt_strategy_passes(2)
+    assert len(names) == 2 * (1 + 3 + 4) and "BDPT d1 s1 t2" in names and "BDPT d2 s3 t1 unweighted" in names
+    for name in names:
+        assert f"{layer}.{name}.R" in channels, (name, sorted(channels)[:20])
+    for c in "RGB":
+        combined = channels[f"{layer}.Combined.{c}"]
+        total = sum(channels[f"{layer}.{n}.{c}"] for n in names if not n.endswith("unweighted"))
+        assert combined.max() > 0.0
+        np.testing.assert_allclose(total, combined, rtol=1e-3, atol=1e-5)

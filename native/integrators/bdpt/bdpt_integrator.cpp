@@ -1,12 +1,22 @@
 #include "integrators/bdpt/bdpt_integrator.h"
 
+#include <algorithm>
+#include <optional>
+
 #include "core/parallel_ordered.h"
+#include "film/aov_film.h"
 #include "integrators/bdpt/bdpt_tracer.h"
 #include "integrators/camera_tiles.h"
 
 namespace candela {
 
 namespace {
+
+/// The strategy images as the integrator's passes ("BDPT d1 s1 t2", ...), where the render asked for them.
+void publish_strategy_images(const StrategyImages& strategies, RenderContext& ctx) {
+    if (!ctx.aovs) return;
+    for (auto& [name, rgb] : strategies.images()) ctx.aovs->set_pass(name, std::move(rgb));
+}
 
 class BdptIntegrator final : public Integrator {
 public:
@@ -21,11 +31,16 @@ public:
             ctx.log("BDPT: the orthographic camera without depth of field has no light-tracing strategy (t = 1): "
                     "the other strategies render the image");
         const BdptTracer tracer(scene, m_settings, emitters);
+        std::optional<StrategyImages> strategies;
+        if (m_settings.strategy_images)
+            strategies.emplace(std::min(m_settings.strategy_depth, m_settings.max_bounces + 1), film.width(),
+                               film.height(), film.origin_x(), film.origin_y());
         const PixelSampling& ps = m_settings.pixel;
         const CameraTilePass<BdptTracer> tiles(scene, film, ctx, ps, tracer);
         const double frame_pixels = double(scene.camera().full_width()) * scene.camera().full_height();
         struct TileSplats {
             SplatBuffer buffer;
+            StrategyImages::Buffer strategies;
             bool complete = false;
         };
         ProgressivePlan plan;
@@ -40,7 +55,10 @@ public:
                     ctx.threads, film.tiles().size(), size_t(2 * resolve_thread_count(ctx.threads)),
                     [&](size_t t) {
                         TileSplats out;
+                        StrategyRecording& rec = strategy_recording();
+                        if (strategies) rec = {&*strategies, &out.strategies};
                         out.complete = tiles.render_tile(t, int(begin), int(end), &out.buffer);
+                        rec = {};
                         return out;
                     },
                     [&](size_t t, TileSplats&& splats) {
@@ -51,10 +69,12 @@ public:
                         double samples[k_noise_replicates] = {};
                         for (int64_t s = begin; s < end; ++s) samples[noise_replicate_of(uint32_t(s))] += share;
                         film.add_splats(splats.buffer, ps.filter, samples);
+                        if (strategies) strategies->merge(splats.strategies, samples[0] + samples[1]);
                     },
                     &ctx.cancel);
             },
             [&] { return film.noise_estimate(); });
+        if (strategies) publish_strategy_images(*strategies, ctx);
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
     // Its BSDF is VertexBsdf's, which applies bump shadowing (tests/native/light_paths_test.cpp).
@@ -71,7 +91,9 @@ std::unique_ptr<Integrator> make_bdpt_integrator(const Params& params) {
 }
 
 double bdpt_integrator_memory(const Params& params, double film_pixels) {
-    return film_pixels * double(sizeof(SplatAccum));
+    const BdptSettings s = BdptSettings::from_params(params);
+    const double strategies = s.strategy_images ? StrategyImages::bytes_per_pixel(s.strategy_depth) : 0.0;
+    return film_pixels * (double(sizeof(SplatAccum)) + strategies);
 }
 
 }  // namespace candela

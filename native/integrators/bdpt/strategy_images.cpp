@@ -57,7 +57,7 @@ void StrategyImages::merge(const Buffer& buffer, double samples) {
     const size_t plane = size_t(m_width) * size_t(m_height) * 3;
     for (const Record& r : buffer) {
         double* p = &m_sum[r.image * plane + (size_t(r.y) * size_t(m_width) + size_t(r.x)) * 3];
-        p[0] += r.value.r, p[1] += r.value.g, p[2] += r.value.b;
+        p[0] += r.value.x, p[1] += r.value.y, p[2] += r.value.z;
     }
     m_samples += samples;
 }

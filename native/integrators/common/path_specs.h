@@ -86,10 +86,9 @@ inline ParamSpec light_samples_spec() {
                      "Light Sampling");
 }
 
-/// Reads the next-event settings of the specs above (mis_heuristic, light_pdf, light_samples, ward_threshold,
-/// light_selection) into `direct` and `selection`; light_sampling is the caller's.
+/// Reads the next-event settings of the specs above (light_pdf, light_samples, ward_threshold, light_selection)
+/// into `direct` and `selection`; light_sampling and mis_heuristic are the caller's.
 inline void read_light_sampling_specs(const ParamReader& read, DirectLightRules* direct, std::string* selection) {
-    direct->mis_heuristic = read.get_enum("mis_heuristic") == "BALANCE" ? MisHeuristic::Balance : MisHeuristic::Power;
     direct->light_pdf = parse_light_pdf_mode(read.get_enum("light_pdf"));
     direct->light_samples = read.get_int("light_samples");
     direct->ward_threshold = read.get_float("ward_threshold");

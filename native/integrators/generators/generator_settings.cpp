@@ -27,7 +27,6 @@ const std::vector<ParamSpec>& GeneratorSettings::specs() {
                               {"POWER", "Power", "Power heuristic with exponent 2 over the three generators"}},
                              "How the three generators' estimates of a one-bounce path are weighted", "Path Generator"),
                   "generators_mis==True"),
-        mis_heuristic_spec(""),
         light_selection_spec(),
         ward_threshold_spec(),
         light_pdf_spec(),
@@ -49,6 +48,7 @@ GeneratorSettings GeneratorSettings::from_params(const Params& params, PathGener
         read.get_enum("generators_heuristic") == "POWER" ? MisHeuristic::Power : MisHeuristic::Balance;
     s.direct.light_sampling = LightSampling::Mis;
     read_light_sampling_specs(read, &s.direct, &s.light_selection);
+    s.direct.mis_heuristic = MisHeuristic::Power;  // the path tracer's default (its setting is PATH's own)
     return s;
 }
 

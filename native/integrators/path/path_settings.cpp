@@ -56,6 +56,7 @@ PathSettings PathSettings::from_params(const Params& params) {
     const std::string ls = read.get_enum("light_sampling");
     s.direct.light_sampling = ls == "BSDF_ONLY" ? LightSampling::BsdfOnly
                               : ls == "LIGHT_ONLY" ? LightSampling::LightOnly : LightSampling::Mis;
+    s.direct.mis_heuristic = read.get_enum("mis_heuristic") == "BALANCE" ? MisHeuristic::Balance : MisHeuristic::Power;
     read_light_sampling_specs(read, &s.direct, &s.light_selection);
     s.branching_factor = read.get_int("branching_factor");
     return s;
