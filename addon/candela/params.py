@@ -34,6 +34,42 @@ def integrator_params(settings, integrator=None):
     return {spec["key"]: setting_value(spec, getattr(settings, spec["key"])) for spec in specs}
 
 
+# Cycles' Film settings Candela shares (scene.cycles, as render.film_transparent is shared), with Cycles' defaults
+# where the Cycles add-on is not there to hold them.
+FILM_DEFAULTS = {"film_exposure": 1.0, "film_transparent_glass": False, "film_transparent_roughness": 0.1}
+
+
+def film_params(scene):
+    """Film > Exposure and Transparent Glass, read from Cycles' own properties (a scene set up for Cycles keeps them)."""
+    cycles = getattr(scene, "cycles", None)
+    out = {}
+    for key, default in FILM_DEFAULTS.items():
+        value = getattr(cycles, key, default) if cycles is not None else default
+        out[key] = bool(value) if isinstance(default, bool) else float(value)
+    return out
+
+
+# Cycles' Light Paths properties → Candela's published settings of the same meaning (docs/light_paths.md).
+CYCLES_LIGHT_PATHS = {"max_bounces": "max_bounces", "diffuse_bounces": "diffuse_bounces",
+                      "glossy_bounces": "glossy_bounces", "transmission_bounces": "transmission_bounces",
+                      "transparent_max_bounces": "transparent_bounces", "sample_clamp_direct": "clamp_direct",
+                      "sample_clamp_indirect": "clamp_indirect", "blur_glossy": "filter_glossy",
+                      "caustics_reflective": "caustics_reflective", "caustics_refractive": "caustics_refractive"}
+
+
+def copy_cycles_light_paths(scene):
+    """Sets scene.candela's Light Paths settings to the values scene.cycles holds; returns the keys copied."""
+    cycles = getattr(scene, "cycles", None)
+    copied = []
+    if cycles is None:
+        return copied
+    for source, key in CYCLES_LIGHT_PATHS.items():
+        if hasattr(cycles, source) and hasattr(scene.candela, key):
+            setattr(scene.candela, key, type(getattr(scene.candela, key))(getattr(cycles, source)))
+            copied.append(key)
+    return copied
+
+
 def frame_size(render):
     """Full frame in pixels with the resolution percentage applied (Blender's integer arithmetic)."""
     return (render.resolution_x * render.resolution_percentage // 100,
@@ -159,6 +195,7 @@ def to_native_params(scene, camera_data, argv=None, camera_object=None, view_lay
         # Combined alpha 0 where the background is seen directly (premultiplied RGBA), like Cycles.
         "film_transparent": bool(render.film_transparent),
     }
+    params.update(film_params(scene))
     params.update(integrator_params(settings))
     params.update(camera_params(camera_data))
     params.update(dof_params(camera_data, camera_object))

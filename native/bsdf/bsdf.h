@@ -6,6 +6,13 @@
 //   sample: one dimension (uc) picks lobe i with probability p_i and is rescaled for the lobe's own
 //   choice; a non-delta result is re-evaluated as the full mixture (f, pdf) — exactly pdf() — so MIS
 //   sees the density sample() used; a delta result keeps weight_i·f_i and the discrete p_i·P_i.
+//
+// Bump shadowing (Chiang, Li and Burley 2019, "Taming the Shadow Terminator", eq. 4; what Cycles 3.4 applies to
+// its diffuse closures whose normal a Bump or Normal Map node bent): with N_s the smooth (interpolated) normal and
+// N_b the bent one, the diffuse lobes' f is multiplied by G(g), g = (N_s·ω_i)/((N_b·ω_i)(N_s·N_b)),
+// G = 1 for g ≥ 1, 0 for g < 0 and −g³ + g² + g in between (C¹ at g = 1). It darkens light arriving at a bent
+// normal from where the smooth surface would not see it, which removes the terminator's bright band. The pdf is
+// unchanged (the term only scales f), so sample() keeps its density. Inactive unless set (set_bump_shadowing).
 #pragma once
 
 #include <array>
@@ -22,6 +29,23 @@ using BsdfLobe = std::variant<LambertBsdf, OrenNayarBsdf, TranslucentBsdf, Trans
 struct WeightedLobe {
     BsdfLobe lobe;
     Color weight{1.f};
+};
+
+/// The smooth normal in the local frame of a BSDF whose z axis is a bent (bumped) normal (see above).
+struct BumpShadowing {
+    Vec3 smooth{0.f, 0.f, 1.f};
+    bool active = false;
+
+    /// G(g) for incident direction wi (local); 1 when inactive.
+    float term(const Vec3& wi) const {
+        if (!active) return 1.f;
+        const float denom = wi.z * smooth.z;
+        const float g = denom != 0.f ? dot(smooth, wi) / denom : 0.f;
+        if (g >= 1.f) return 1.f;
+        if (!(g >= 0.f)) return 0.f;
+        const float g2 = g * g;
+        return -g2 * g + g2 + g;
+    }
 };
 
 class Bsdf {
@@ -50,6 +74,9 @@ public:
     void scale(Color s) {
         for (int i = 0; i < m_count; ++i) m_lobes[size_t(i)].weight *= s;
     }
+    /// Turns bump shadowing on for the diffuse lobes (the smooth normal in this BSDF's local frame), or off.
+    void set_bump_shadowing(const BumpShadowing& b) { m_shadowing = b; }
+    const BumpShadowing& bump_shadowing() const { return m_shadowing; }
 
     int size() const { return m_count; }
     bool empty() const { return m_count == 0; }
@@ -65,7 +92,7 @@ public:
     // else goes through the lobe variant out of line (the *_general functions), which keeps these small enough
     // to inline into the integrators' vertex loops.
     Color f(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
-        if (single_lambert()) return m_lobes[0].weight * LambertBsdf{}.f(wo, wi, mode);
+        if (single_lambert() && !m_shadowing.active) return m_lobes[0].weight * LambertBsdf{}.f(wo, wi, mode);
         return f_general(wo, wi, mode);
     }
     float pdf(const Vec3& wo, const Vec3& wi, TransportMode mode = TransportMode::Radiance) const {
@@ -73,7 +100,7 @@ public:
         return pdf_general(wo, wi, mode);
     }
     BsdfSample sample(const Vec3& wo, Vec2 u, float uc, TransportMode mode = TransportMode::Radiance) const {
-        if (single_lambert()) {
+        if (single_lambert() && !m_shadowing.active) {
             BsdfSample s = LambertBsdf{}.sample(wo, u, uc, mode);
             s.f *= m_lobes[0].weight;
             return s;
@@ -109,14 +136,18 @@ public:
 private:
     /// Exactly one lobe, Lambertian: f, pdf and sample take the inline path.
     bool single_lambert() const { return m_count == 1 && std::holds_alternative<LambertBsdf>(m_lobes[0].lobe); }
+    /// Lobe i's weighted f, with the bump shadowing term for diffuse lobes.
+    Color lobe_f(int i, const Vec3& wo, const Vec3& wi, TransportMode mode) const {
+        const WeightedLobe& wl = m_lobes[size_t(i)];
+        Color v = wl.weight * std::visit([&](const auto& l) { return l.f(wo, wi, mode); }, wl.lobe);
+        if (m_shadowing.active && std::visit([](const auto& l) { return (l.flags() & k_bsdf_diffuse) != 0u; }, wl.lobe))
+            v *= m_shadowing.term(wi);
+        return v;
+    }
     __attribute__((noinline)) Color f_general(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
-        if (m_count == 1)  // one lobe: no mixture bookkeeping (the common diffuse case)
-            return m_lobes[0].weight * std::visit([&](const auto& l) { return l.f(wo, wi, mode); }, m_lobes[0].lobe);
+        if (m_count == 1) return lobe_f(0, wo, wi, mode);  // one lobe: no mixture bookkeeping (the common case)
         Color sum(0.f);
-        for (int i = 0; i < m_count; ++i) {
-            const WeightedLobe& wl = m_lobes[size_t(i)];
-            sum += wl.weight * std::visit([&](const auto& l) { return l.f(wo, wi, mode); }, wl.lobe);
-        }
+        for (int i = 0; i < m_count; ++i) sum += lobe_f(i, wo, wi, mode);
         return sum;
     }
 
@@ -135,6 +166,7 @@ private:
         if (m_count == 1) {  // one lobe: its own sample is exactly the mixture's
             BsdfSample s = std::visit([&](const auto& l) { return l.sample(wo, u, uc, mode); }, m_lobes[0].lobe);
             s.f *= m_lobes[0].weight;
+            if (m_shadowing.active && (s.flags & k_bsdf_diffuse)) s.f *= m_shadowing.term(s.wi);
             return s;
         }
         std::array<float, k_max_lobes> p;
@@ -171,6 +203,7 @@ private:
     }
 
     std::array<WeightedLobe, k_max_lobes> m_lobes{};
+    BumpShadowing m_shadowing;
     int m_count = 0;
     uint32_t m_flags = 0;      // union of the lobes' flags
     bool m_all_delta = true;   // every lobe specular (vacuous when empty; is_delta() checks m_count)

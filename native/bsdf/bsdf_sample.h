@@ -21,6 +21,7 @@ enum BsdfFlags : uint32_t {
     k_bsdf_diffuse = 1u << 2,
     k_bsdf_glossy = 1u << 3,
     k_bsdf_specular = 1u << 4,  // delta distribution: f and pdf are only meaningful for the sampled wi
+    k_bsdf_transparent = 1u << 5,  // a Transparent BSDF's pass-through (Cycles' LABEL_TRANSPARENT): not a bounce
 };
 
 struct BsdfSample {
@@ -34,6 +35,7 @@ struct BsdfSample {
     bool is_delta() const { return (flags & k_bsdf_specular) != 0; }
     bool is_transmission() const { return (flags & k_bsdf_transmission) != 0; }
     bool is_reflection() const { return (flags & k_bsdf_reflection) != 0; }
+    bool is_transparent() const { return (flags & k_bsdf_transparent) != 0; }
 };
 
 }  // namespace candela

@@ -100,7 +100,7 @@ struct TransparentBsdf {
         return s;
     }
     float albedo(const Vec3&) const { return 1.f; }
-    uint32_t flags() const { return k_bsdf_transmission | k_bsdf_specular; }
+    uint32_t flags() const { return k_bsdf_transmission | k_bsdf_specular | k_bsdf_transparent; }
 };
 
 /// Fresnel factor of a microfacet reflection lobe. None: Cycles' Glossy/Anisotropic node (colour tint

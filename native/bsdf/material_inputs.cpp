@@ -146,7 +146,10 @@ std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, cons
                     }
                     break;
                 case InputTarget::Normal:
-                    if (varying) in.normal_reg = int32_t(b.reg);  // a constant normal input is ignored
+                    if (varying) {  // a constant normal input is ignored
+                        in.normal_reg = int32_t(b.reg);
+                        in.normal_is_displacement = b.column == 1;
+                    }
                     break;
                 case InputTarget::Holdout:
                     if (varying) {

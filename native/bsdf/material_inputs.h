@@ -33,6 +33,8 @@ struct MaterialInputs {
     std::vector<Binding> bindings;   // the inputs that vary
     int32_t emission_reg = -1;       // varying emitted radiance
     int32_t normal_reg = -1;         // shading normal
+    bool normal_is_displacement = false;  // it comes from the Displacement output (bump only), not a BSDF's Normal
+                                          // input: the smooth normal itself moves (no bump shadowing, as Cycles)
     int32_t holdout_reg = -1;        // varying Holdout weight
 
     /// The closure rows with the program's registers applied.

@@ -21,6 +21,9 @@ const std::vector<ArraySpec>& array_schema() {
         {"instance_transform", ElemType::F32, {-1, 4, 4}, true},
         {"instance_flags", ElemType::U8, {-1}, false},
         {"instance_pass_index", ElemType::U32, {-1}, false},
+        {"instance_color", ElemType::F32, {-1, 4}, false},
+        {"instance_random", ElemType::F32, {-1}, false},
+        {"instance_terminator", ElemType::F32, {-1}, false},
         {"material_type", ElemType::U32, {-1}, true},
         {"materials", ElemType::F32, {-1, -1}, true},
         {"material_holdout", ElemType::F32, {-1}, false},
@@ -199,7 +202,8 @@ void SceneArrays::validate() const {
         if (im[i] + 1 >= M1)
             throw InvalidScene("instance_mesh[" + std::to_string(i) + "] = " + std::to_string(im[i]) +
                                " but there are only " + std::to_string(M1 - 1) + " meshes");
-    for (const char* name : {"instance_flags", "instance_pass_index"})
+    for (const char* name : {"instance_flags", "instance_pass_index", "instance_color", "instance_random",
+                             "instance_terminator"})
         if (has(name) && rows(name) != I)
             throw InvalidScene(std::string("scene array '") + name + "' has " + std::to_string(rows(name)) +
                                " rows, expected " + std::to_string(I) + " (one per instance)");
@@ -208,6 +212,15 @@ void SceneArrays::validate() const {
             if (f->data<uint8_t>()[i] > 63)
                 throw InvalidScene("instance_flags[" + std::to_string(i) + "] = " + std::to_string(f->data<uint8_t>()[i]) +
                                    " has unknown bits (capabilities()['instance_flags'] lists them)");
+    if (has("instance_color")) check_finite(get("instance_color"), "instance_color", 4);
+    if (has("instance_random")) check_finite(get("instance_random"), "instance_random", 1);
+    if (const Array* t = find("instance_terminator"))
+        for (size_t i = 0; i < I; ++i) {
+            const float v = t->data<float>()[i];
+            if (!(v >= 0.f && v <= 1.f))
+                throw InvalidScene("instance_terminator[" + std::to_string(i) + "] = " + std::to_string(v) +
+                                   " must be a shadow terminator geometry offset in [0, 1]");
+        }
     if (const Array* h = find("material_holdout")) {
         if (rows("material_holdout") != K)
             throw InvalidScene("scene array 'material_holdout' has " + std::to_string(rows("material_holdout")) +

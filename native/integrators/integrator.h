@@ -22,9 +22,23 @@ struct WorkBudget {
     const char* unit = "sample";  // singular, lower case: "sample", "light path", "iteration", "mutation"
 };
 
+/// Scene features an integrator may or may not honour (Integrator::honoured_features). The session logs each one a
+/// scene uses that the chosen integrator does not, so the user knows why the image differs from PATH's.
+enum SceneFeature : uint32_t {
+    k_feature_light_path = 1u << 0,           // the Light Path node's outputs (ray type and depths)
+    k_feature_transparent_shadows = 1u << 1,  // shadow rays and connections through Transparent surfaces
+    k_feature_terminator_offset = 1u << 2,    // the shadow terminator geometry offset of smooth low-poly meshes
+    k_feature_motion_blur = 1u << 3,          // camera and object motion over the shutter
+    k_feature_bump_shadowing = 1u << 4,       // the bump shadowing term at bent normals (bsdf/bsdf.h)
+};
+/// The log line for the features of `scene` that an integrator honouring `honoured` ignores ("" if none).
+std::string unhonoured_features_note(const std::string& integrator, uint32_t honoured, const Scene& scene);
+
 class Integrator {
 public:
     virtual ~Integrator() = default;
+    /// The SceneFeature bits this integrator honours (the default: none of them).
+    virtual uint32_t honoured_features() const { return 0; }
     /// Renders into the film until done or cancelled (returns normally on cancel, keeping the partial image),
     /// through the progressive driver (integrators/progressive_driver.h). Must not depend on thread count or
     /// scheduling for a given seed.

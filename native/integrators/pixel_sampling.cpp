@@ -28,6 +28,12 @@ const std::vector<ParamSpec>& common_param_specs() {
         float_param("filter_width", "Filter Width", 1.5, 0.01, 64.0, "Pixel filter width in pixels", "", 10.0),
         bool_param("film_transparent", "Transparent", false,
                    "Alpha 0 where the background is seen directly (premultiplied RGBA), as in Cycles"),
+        bool_param("film_transparent_glass", "Transparent Glass", false,
+                   "With a transparent film, the background seen through smooth glass and refraction stays "
+                   "transparent (Cycles' Film > Transparent Glass)"),
+        float_param("film_transparent_roughness", "Roughness Threshold", 0.1, 0.0, 1.0,
+                    "Transparent Glass: refractions up to this roughness (squared, as Cycles compares it) count as "
+                    "smooth"),
         float_param("time_limit", "Time Limit", 0.0, 0.0, 1e9,
                     "Stop rendering after this many seconds (after export and scene build), even if not all samples "
                     "are done; 0 = no limit. Renders then differ between machines", "", 3600.0),
@@ -48,6 +54,8 @@ PixelSampling PixelSampling::from_params(const Params& params) {
     s.sampler = read.get_enum("sampler");
     s.filter = PixelFilter(read.get_enum("pixel_filter"), read.get_float("filter_width"));
     s.film_transparent = read.get_bool("film_transparent");
+    s.transparent_glass = read.get_bool("film_transparent_glass");
+    s.transparent_roughness = read.get_float("film_transparent_roughness");
     s.time_limit = read.get_double("time_limit");
     s.noise_threshold = read.get_double("noise_threshold");
     return s;

@@ -1,7 +1,7 @@
 // The type of a continuation ray, for object ray visibility (scene/ray_visibility.h), as Cycles' path_state_next
 // assigns it: any transmission makes a TRANSMISSION ray, a reflection a DIFFUSE or a GLOSSY one (mirror-like
-// reflection counts as glossy), and a transparent pass-through (a delta transmission that keeps the direction,
-// η = 1) keeps the type of the ray it continues — a camera ray through a transparent surface is still a camera ray.
+// reflection counts as glossy), and a transparent pass-through (a Transparent BSDF's straight continuation) keeps the
+// type of the ray it continues — a camera ray through a transparent surface is still a camera ray.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +12,7 @@
 namespace candela {
 
 inline uint8_t continuation_ray_type(const BsdfSample& s, uint8_t previous) {
-    if (s.is_transmission()) return s.is_delta() && s.eta == 1.f ? previous : uint8_t(k_ray_transmission);
+    if (s.is_transmission()) return s.is_transparent() ? previous : uint8_t(k_ray_transmission);
     return (s.flags & k_bsdf_diffuse) ? uint8_t(k_ray_diffuse) : uint8_t(k_ray_glossy);
 }
 

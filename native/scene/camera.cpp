@@ -111,6 +111,17 @@ void Camera::translate(const Vec3& offset) {
     m_to_camera = m_to_world.inverse();
 }
 
+Vec2 Camera::world_to_raster(const Vec3& p) const {
+    const Vec3 q = m_to_camera.point(p);  // camera space: looking down −Z
+    float sx = q.x, sy = q.y;
+    if (!m_ortho) {
+        const float depth = std::fmax(-q.z, 1e-30f);
+        sx = q.x / (depth * m_tan_half_fov);
+        sy = q.y / (depth * m_tan_half_fov);
+    }
+    return {(sx - m_left) / m_raster_to_x, (sy - m_bottom) / m_raster_to_y};
+}
+
 Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {
     if (m_pano != Panorama::None) return generate_panoramic_ray(raster);
     const float sx = m_left + raster.x * m_raster_to_x;

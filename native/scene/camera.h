@@ -95,6 +95,9 @@ public:
     int full_height() const { return m_height; }
     /// Moves the camera by `offset` (the scene is rendered in camera-world space).
     void translate(const Vec3& offset);
+    /// Where point p (camera-world space) lies on the full frame's raster (pinhole projection, shift included; the
+    /// inverse of generate_ray's mapping without aperture). A point behind a perspective camera maps far outside.
+    Vec2 world_to_raster(const Vec3& p) const;
 
     // ---- Importance (scene/camera_importance.cpp) ----------------------------------------------------------
     bool orthographic() const { return m_ortho; }

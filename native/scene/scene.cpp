@@ -36,7 +36,7 @@ uint32_t closure_flags(ClosureType type) {
         case ClosureType::Glossy: return R | G | S;
         case ClosureType::Glass: return R | T | G | S;
         case ClosureType::Refraction: return T | G | S;
-        case ClosureType::Transparent: return T | S;
+        case ClosureType::Transparent: return T | S | k_bsdf_transparent;
         default: return R | T | D | G | S;  // Principled: every lobe
     }
 }
@@ -55,7 +55,10 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
     m_material_inputs = load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg,
                                              &m_material_holdout);
     for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
-    for (const MaterialInputs& mi : m_material_inputs) m_has_holdouts |= mi.holdout_reg >= 0;
+    for (const MaterialInputs& mi : m_material_inputs) {
+        m_has_holdouts |= mi.holdout_reg >= 0;
+        m_any_bent_normal |= mi.normal_reg >= 0 && !mi.normal_is_displacement;
+    }
     m_threads = params.get<int>("threads", 0);
     m_material_flags.resize(m_materials.size(), 0u);
     for (size_t k = 0; k < m_materials.size(); ++k)
@@ -67,6 +70,7 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
             if (mat[i] < m_materials.size() && m_materials[mat[i]].inputs >= 0)
                 m_material_flags[mat[i]] |= closure_flags(ClosureType(type[i]));
     }
+    for (uint32_t f : m_material_flags) m_any_transparent |= (f & k_bsdf_transparent) != 0;
     build(arrays, cancel, cache);
 }
 

@@ -95,8 +95,39 @@ public:
                               bool camera_ray = false) const;
 
     /// The material at a hit seen from direction wo (toward the viewer): its BSDF for that side, emission and
-    /// shading normal, with textures and normal maps evaluated there (scene/shading.cpp).
-    ShadingPoint shade(const SurfaceHit& hit, const Vec3& wo) const;
+    /// shading normal, with textures and normal maps evaluated there (scene/shading.cpp). `path`: what the Light
+    /// Path node reads there (the ray's type and the path's depths); null: no path (its outputs read 0).
+    ShadingPoint shade(const SurfaceHit& hit, const Vec3& wo, const LightPathInfo* path = nullptr) const;
+    /// Whether some material or the world reads a Light Path output (integrators that cannot define them say so).
+    bool reads_light_path() const { return m_shaders->reads_light_path(); }
+
+    /// What reaches `to` from `from` along the straight segment (docs/light_paths.md, "Transparent shadows"): 0 if
+    /// an opaque surface blocks it, else the product of the transparent surfaces' Transparent weights (Cycles'
+    /// transparent shadows), each shaded as a shadow ray sees it (`path`: the shadow ray's Light Path inputs, its
+    /// transparent_depth counting the surfaces crossed; at most `max_surfaces` of them, more block). `to_infinity`:
+    /// `to` is a direction and the segment a ray to infinity. Without transparent materials this is occluded().
+    Color transmittance(const Vec3& from, const Vec3& to, bool to_infinity, const PrimitiveRef& skip_from,
+                        const LightPathInfo& path, int max_surfaces) const;
+    /// Whether some material has a Transparent closure (shadow rays then go through transmittance()).
+    bool has_transparent_materials() const { return m_any_transparent; }
+
+    /// The world's radiance along escaping direction d for a path with Light Path inputs `path`, when the world
+    /// shader reads the Light Path node (world_reads_light_path()); otherwise use the light set's world light or
+    /// background, which are the same for every path.
+    Color world_radiance(const Vec3& d, const LightPathInfo& path) const;
+    bool world_reads_light_path() const { return m_world_path_dependent; }
+
+    /// The shadow-ray origin of Cycles' shadow terminator geometry offset (docs/light_paths.md): for a smooth
+    /// triangle of an object with a positive offset, the point lifted toward the smooth surface the vertex normals
+    /// describe (Hanika 2021), blended in for light directions wl near the terminator; the hit point otherwise.
+    Vec3 terminator_point(const SurfaceHit& hit, const Vec3& ns_side, const Vec3& ng_side, const Vec3& wl) const;
+    bool has_terminator_offsets() const { return m_any_terminator_offset; }
+    /// Whether some material's normal comes from a Bump or Normal Map node (bump shadowing applies there).
+    bool has_bent_normals() const { return m_any_bent_normal; }
+    /// Whether terminator_point can move `hit` (a smooth triangle of an object with a positive offset).
+    bool terminator_lifts(const SurfaceHit& hit) const;
+    /// Whether the camera or some object moves over the shutter (motion blur).
+    bool has_motion() const { return m_has_motion; }
 
     const Camera& camera() const { return m_camera; }
     /// Replaces the camera (camera params as the constructor reads them; camera_to_world rigid, in world space):
@@ -179,7 +210,7 @@ private:
     /// The shader program's inputs at a hit on placement `pl`, seen from wo (scene/shading.cpp).
     /// With `differentials`, also the offsets of Bump's finite differences (ShadingInputs::dp …).
     ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl,
-                                 bool differentials = false) const;
+                                 bool differentials = false, const LightPathInfo* path = nullptr) const;
     /// The Holdout weight of a material whose weight comes from its shader program, at the hit (shading.cpp).
     float varying_holdout(const SurfaceHit& hit, const Vec3& wo) const;
     /// Whether material k's emission comes from its shader program (a textured emitter).
@@ -206,6 +237,11 @@ private:
     bool m_has_holdouts = false;
     uint32_t m_hidden_from = 0;              // ray types some object is invisible to (they need the filter)
     bool m_any_coplanar = false;             // some object has the coplanar geometry filter
+    bool m_any_transparent = false;          // some material has a Transparent closure (transparent shadows)
+    bool m_world_path_dependent = false;     // the world shader reads the Light Path node
+    bool m_any_terminator_offset = false;    // some object has a shadow terminator offset
+    bool m_any_bent_normal = false;          // some material bends its normal (Bump, Normal Map): bump shadowing
+    bool m_has_motion = false;               // motion blur: the camera or an object moves over the shutter
     Camera m_camera;
     std::vector<Material> m_materials;
     std::shared_ptr<const ShaderLibrary> m_shaders;

@@ -45,11 +45,15 @@ struct Scene::Builder {
     const float* instance_xf;
     const Array* flags_arr;
     const Array* pass_index_arr;
+    const Array* color_arr;
+    const Array* random_arr;
+    const Array* terminator_arr;
     size_t mesh_count, instance_count;
     std::vector<MeshRange> ranges;
     std::vector<uint32_t> uses;            // instances of each mesh
     std::vector<uint8_t> instance_coplanar, mesh_coplanar;
     std::vector<int32_t> mesh_scene;       // index into m_mesh_scenes of an instanced mesh, −1 before it is built
+    std::vector<uint8_t> mesh_corners;     // the mesh keeps its corner positions (a shadow terminator offset)
     RTCSceneFlags scene_flags = RTC_SCENE_FLAG_NONE;
 
     Builder(Scene& s, const SceneArrays& a, const CancelToken* c, MeshBvhCache* bvh_cache)
@@ -58,6 +62,8 @@ struct Scene::Builder {
           smooth_arr(a.find("tri_smooth")), normals_arr(a.find("normals")), vertex_normals_arr(a.find("vertex_normals")),
           instance_mesh(a.get("instance_mesh").data<uint32_t>()), instance_xf(a.get("instance_transform").data<float>()),
           flags_arr(a.find("instance_flags")), pass_index_arr(a.find("instance_pass_index")),
+          color_arr(a.find("instance_color")), random_arr(a.find("instance_random")),
+          terminator_arr(a.find("instance_terminator")),
           mesh_count(a.rows("mesh_tri_start") - 1), instance_count(a.rows("instance_mesh")) {}
 
     void check_cancel() const {
@@ -66,6 +72,7 @@ struct Scene::Builder {
     uint8_t instance_flags(size_t i) const {
         return flags_arr ? flags_arr->data<uint8_t>()[i] : uint8_t(k_object_default);
     }
+    float terminator_offset(size_t i) const { return terminator_arr ? terminator_arr->data<float>()[i] : 0.f; }
     /// Instance i's object → camera-world transform.
     Affine instance_transform(size_t i) const {
         Affine xf = Affine::from_rows(instance_xf + 16 * i);
@@ -89,6 +96,9 @@ struct Scene::Builder {
             if (r.empty()) r.vert_begin = r.vert_end = 0;
             ranges[m] = r;
         }
+        mesh_corners.assign(mesh_count, 0);
+        for (size_t i = 0; i < instance_count; ++i)
+            if (terminator_offset(i) > 0.f) mesh_corners[instance_mesh[i]] = 1;
     }
 
     /// What needs Embree filters: ray types some object is hidden from get the context filter on every hit;
@@ -115,8 +125,8 @@ struct Scene::Builder {
         scene_flags = scene.m_hidden_from ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : RTC_SCENE_FLAG_NONE;
     }
 
-    /// Shading data of mesh m, its normals transformed by normal_xf when flattening.
-    MeshShading make_shading(uint32_t m, const Affine* normal_xf) const {
+    /// Shading data of mesh m, its normals transformed by normal_xf (and its corners by xf) when flattening.
+    MeshShading make_shading(uint32_t m, const Affine* normal_xf, const Affine* xf = nullptr) const {
         MeshShading s;
         const MeshRange& r = ranges[m];
         const size_t n = r.tri_end - r.tri_begin;
@@ -148,6 +158,14 @@ struct Scene::Builder {
             if (normal_xf) v = normal_xf->vector(v);
             const float len = length(v);
             s.normals[i] = len > 0.f ? v / len : Vec3(0.f);
+        }
+        if (mesh_corners[m]) {
+            s.corners.resize(3 * n);
+            for (size_t i = 0; i < 3 * n; ++i) {
+                const float* p = positions + 3 * size_t(corner_vertex[i]);
+                const Vec3 q(p[0], p[1], p[2]);
+                s.corners[i] = xf ? xf->point(q) : q;
+            }
         }
         return s;
     }
@@ -235,7 +253,7 @@ struct Scene::Builder {
     void add_flattened(size_t i, Placement pl, const Affine& xf, uint8_t flags) {
         const uint32_t m = pl.mesh;
         const Affine nxf = xf.normal_matrix();
-        scene.m_shading[m] = make_shading(m, &nxf);
+        scene.m_shading[m] = make_shading(m, &nxf, &xf);
         RTCGeometry g = make_geometry(m, xf, &pl.magnitude, instance_coplanar[i] != 0);
         const unsigned id = rtcAttachGeometry(scene.m_top.get(), g);
         rtcReleaseGeometry(g);
@@ -334,6 +352,14 @@ struct Scene::Builder {
             Placement pl;
             pl.mesh = m;
             pl.pass_index = pass_index_arr ? pass_index_arr->data<uint32_t>()[i] : 0u;
+            if (color_arr) {
+                const float* c = color_arr->data<float>() + 4 * i;
+                pl.color = Vec3(c[0], c[1], c[2]);
+                pl.alpha = c[3];
+            }
+            if (random_arr) pl.random = random_arr->data<float>()[i];
+            pl.terminator_offset = terminator_offset(i);
+            scene.m_any_terminator_offset |= pl.terminator_offset > 0.f;
             const uint8_t flags = instance_flags(i);
             scene.m_has_holdouts |= (flags & k_object_holdout) != 0;
             pl.mirrored = xf.determinant3() < 0.f;
@@ -387,7 +413,8 @@ struct Scene::Builder {
     void account_memory() {
         for (const MeshShading& s : scene.m_shading)
             scene.m_stats.shading_bytes += s.material.capacity() * sizeof(uint32_t) + s.smooth.capacity() +
-                                           s.normals.capacity() * sizeof(Vec3) + s.emissive_rank.capacity() * sizeof(int32_t);
+                                           s.normals.capacity() * sizeof(Vec3) + s.emissive_rank.capacity() * sizeof(int32_t) +
+                                           s.corners.capacity() * sizeof(Vec3);
         scene.m_stats.shading_bytes += scene.m_placements.capacity() * sizeof(Placement);
         scene.m_stats.embree_bytes = size_t(std::max<int64_t>(scene.m_device->bytes(), 0));
     }

@@ -17,6 +17,8 @@ struct Scene::MeshShading {
     std::vector<uint8_t> smooth;
     std::vector<Vec3> normals;          // 3 per triangle, or empty
     std::vector<int32_t> emissive_rank; // index among the mesh's emissive triangles, −1 if not emissive
+    std::vector<Vec3> corners;          // 3 positions per triangle (same space as normals), for the shadow
+                                        // terminator offset of smooth triangles; empty when no instance needs it
     MeshAttributes attributes;          // only for meshes with textured materials
 };
 
@@ -34,6 +36,9 @@ struct Scene::Placement {
     int32_t mesh_scene = -1; // an instance's shared BVH (index into m_mesh_scenes)
     Affine object_to_world;  // object → camera-world (flattened meshes too: textures need object space)
     Affine world_to_object;
+    Vec3 color{1.f};          // Object Info > Color, Alpha, Random (instance_color, instance_random)
+    float alpha = 1.f, random = 0.f;
+    float terminator_offset = 0.f;  // Cycles' Shadow Terminator > Geometry Offset (instance_terminator)
 };
 
 }  // namespace candela

@@ -8,7 +8,7 @@
 namespace candela {
 
 ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl,
-                                    bool differentials) const {
+                                    bool differentials, const LightPathInfo* path) const {
     // Where on the object the hit is: UV, tangent frame, object-space position.
     const PrimitiveRef& prim = hit.primitive;
     const MeshAttributes& attr = m_shading[pl.mesh].attributes;
@@ -26,6 +26,14 @@ ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const
     in.true_normal = hit.ng;
     in.object_location = pl.object_to_world.translation() - m_offset;
     in.object_index = float(pl.pass_index);
+    in.object_color = pl.color;
+    in.object_alpha = pl.alpha;
+    in.object_random = pl.random;
+    if (path) in.path = *path;
+    if (m_shaders->reads_window()) {
+        const Vec2 r = m_camera.world_to_raster(hit.p);
+        in.window = Vec3(r.x / float(m_camera.full_width()), r.y / float(m_camera.full_height()), 0.f);
+    }
     in.attributes = attr.attribute_corners(prim.prim);
     in.attribute_slots = attr.attribute_slots;
     in.b1 = hit.b1;
@@ -56,7 +64,7 @@ ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const
     return in;
 }
 
-ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
+ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo, const LightPathInfo* path) const {
     const Material& material = m_materials[hit.material];
     ShadingPoint sp;
     sp.ns = hit.ns;
@@ -68,7 +76,7 @@ ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
     const MaterialInputs& mi = m_material_inputs[size_t(material.inputs)];
     const PrimitiveRef& prim = hit.primitive;
     const ShadingInputs in = shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom],
-                                            m_shaders->uses_differentials(mi.program));
+                                            m_shaders->uses_differentials(mi.program), path);
     ShaderRegisters regs(m_shaders->program_size(mi.program));
     m_shaders->evaluate(mi.program, in, regs.data());
     if (mi.emission_reg >= 0) sp.emission = vmax(regs[uint32_t(mi.emission_reg)], Color(0.f));
@@ -76,6 +84,7 @@ ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo) const {
         const Vec3 n = regs[uint32_t(mi.normal_reg)];
         const float len = length(n);
         if (len > 0.f && std::isfinite(len)) sp.ns = n / len;
+        sp.bent = !mi.normal_is_displacement && (sp.ns.x != hit.ns.x || sp.ns.y != hit.ns.y || sp.ns.z != hit.ns.z);
     }
     // Closures whose inputs were all folded at load keep the material's own BSDF.
     if (!mi.bindings.empty()) sp.own(mi.bsdf(regs.data(), sp.backfacing));
@@ -131,9 +140,21 @@ Color Scene::emission(uint32_t id, const Vec3& p, const Vec3& ng, float b1, floa
     return textured_emission(m_placements[e.placement], e.prim, p, ng, b1, b2, wo);
 }
 
+Color Scene::world_radiance(const Vec3& d, const LightPathInfo& path) const {
+    ShadingInputs in = ShadingInputs::world(d);
+    in.path = path;
+    ShaderRegisters regs(m_shaders->program_size(uint32_t(m_world_program)));
+    m_shaders->evaluate(uint32_t(m_world_program), in, regs.data());
+    return vmax(regs[uint32_t(m_world_reg)], Color(0.f));
+}
+
 void Scene::add_environment() {
     const auto program = uint32_t(m_world_program), reg = uint32_t(m_world_reg);
-    if (!m_shaders->varying(program, reg)) {  // a constant after all: the background colour, not a light
+    // A world that varies only with the path (a Light Path node: "the camera sees white, the scene is lit by
+    // blue") is constant in direction, so Cycles neither light-samples it nor needs to: escaping rays evaluate it
+    // with their own Light Path inputs (world_radiance), and the light set keeps the value light sampling would see.
+    m_world_path_dependent = m_shaders->path_dependent(program, reg);
+    if (!m_shaders->spatially_varying(program, reg)) {  // a constant after all: the background colour, not a light
         ShaderRegisters regs(m_shaders->program_size(program));
         m_shaders->evaluate(program, ShadingInputs::world(Vec3(0.f, 0.f, 1.f)), regs.data());
         m_lights.set_background(vmax(regs[reg], Color(0.f)));

@@ -21,6 +21,7 @@ constexpr double k_vertex_bytes = 12.0;              // Embree vertex buffer (fl
 constexpr double k_index_bytes = 12.0;               // Embree index buffer (uint3)
 constexpr double k_shading_bytes = 9.0;              // material (4) + smooth flag (1) + emissive rank (4)
 constexpr double k_normal_bytes = 36.0;              // 3 shading normals, for meshes with smooth faces
+constexpr double k_corner_bytes = 36.0;              // 3 corner positions (smooth meshes with a terminator offset)
 constexpr double k_instance_bytes = 512.0;           // Embree instance, top-level BVH leaf, placement
 constexpr double k_light_bytes = 256.0;              // an emissive triangle's light and its light-tree share
 constexpr double k_thread_bytes = 4e6;               // per build thread: Embree's thread-local allocation blocks
@@ -87,6 +88,12 @@ MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, 
 
     std::vector<uint32_t> uses(mesh_count, 0);
     for (size_t i = 0; i < instance_count; ++i) ++uses[instance_mesh[i]];
+    std::vector<uint8_t> terminator(mesh_count, 0);  // some instance has a shadow terminator offset
+    if (const Array* t = arrays.find("instance_terminator"))
+        for (size_t i = 0; i < instance_count; ++i)
+            if (t->data<float>()[i] > 0.f) terminator[instance_mesh[i]] = 1;
+    const uint8_t* smooth_any = smooth_arr && (arrays.has("normals") || arrays.has("vertex_normals"))
+                                    ? smooth_arr->data<uint8_t>() : nullptr;
     e.mesh_bytes.assign(mesh_count, 0.0);
     double biggest = -1.0;
     for (size_t m = 0; m < mesh_count; ++m) {
@@ -94,7 +101,7 @@ MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, 
         if (uses[m] == 0 || n == 0) continue;
         uint32_t vlo = UINT32_MAX, vhi = 0;
         size_t lights = 0;
-        bool any_smooth = false;
+        bool any_smooth = false, any_smooth_faces = false;
         for (size_t t = t0; t < t1; ++t) {
             for (int k = 0; k < 3; ++k) {
                 vlo = std::min(vlo, triangles[3 * t + k]);
@@ -102,12 +109,14 @@ MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, 
             }
             lights += emissive[tri_material[t]];
             any_smooth |= smooth && smooth[t];
+            any_smooth_faces |= smooth_any && smooth_any[t];
         }
         const double vertices = double(vhi) - double(vlo) + 1.0;
         // One geometry and BVH per mesh (a single-use mesh is flattened into the top-level BVH, the same cost),
         // per use: an instance (if shared) and the emissive triangles' lights.
         double bytes = vertices * k_vertex_bytes + double(n) * (k_index_bytes + k_shading_bytes + k_bvh_bytes_per_triangle);
         if (any_smooth) bytes += double(n) * k_normal_bytes;
+        if (any_smooth_faces && terminator[m]) bytes += double(n) * k_corner_bytes;
         if (uses[m] > 1) bytes += double(uses[m]) * k_instance_bytes;
         bytes += double(uses[m]) * double(lights) * k_light_bytes;
         e.mesh_bytes[m] = bytes;

@@ -3,6 +3,7 @@
 #include "integrators/bdpt/strategy_images.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 #include "scene/camera.h"
@@ -60,6 +61,9 @@ Session::Session(SceneArrays arrays, Params params)
                                    memory.refusal());
         throw InvalidScene(memory.refusal());
     }
+    m_exposure = m_params.get<float>("film_exposure", 1.f);
+    if (!(m_exposure >= 0.f) || !std::isfinite(m_exposure))
+        throw InvalidParameter("film_exposure must be a finite factor >= 0 (got " + std::to_string(m_exposure) + ")");
     m_threads = resolve_thread_count(m_params.get<int>("threads", 0));
     m_film = std::make_unique<Film>(x1 - x0, y1 - y0, x0, y0, m_params.get<int>("tile_size", 32));
     m_aovs = std::make_unique<AovFilm>(*m_film, split_pass_list(m_params.get<std::string>("passes", "")));
@@ -102,6 +106,9 @@ void Session::run() {
         }
         if (scene.lights().empty() && is_black(scene.lights().background()))
             m_log.add("the scene has no lights and a black world: the image is black");
+        const std::string note = unhonoured_features_note(m_params.get<std::string>("integrator", "PATH"),
+                                                          m_integrator->honoured_features(), scene);
+        if (!note.empty()) m_log.add(note);
         RenderContext ctx{m_cancel, m_counters, m_threads, m_aovs.get(), &m_log};
         m_integrator->render(scene, *m_film, ctx);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
@@ -201,11 +208,18 @@ std::vector<std::pair<std::string, int>> Session::pass_names() {
 std::vector<float> Session::get_pass(const std::string& name, int* channels) const {
     if (name == "Combined") {
         *channels = 4;
-        return m_film->combined();
+        std::vector<float> rgba = m_film->combined();
+        if (m_exposure != 1.f)  // Film > Exposure scales the light, not the alpha
+            for (size_t i = 0; i < rgba.size(); i += 4)
+                for (size_t c = 0; c < 3; ++c) rgba[i + c] *= m_exposure;
+        return rgba;
     }
     if (name == "Noise") {
         *channels = 1;
-        return m_film->noise();
+        std::vector<float> noise = m_film->noise();
+        if (m_exposure != 1.f)
+            for (float& v : noise) v *= m_exposure;
+        return noise;
     }
     return m_aovs->get(name, channels);
 }

@@ -89,6 +89,7 @@ private:
     CancelToken m_cancel;
     RenderCounters m_counters;
     int m_threads = 0;
+    float m_exposure = 1.f;  // Film > Exposure (film_exposure)
 
     std::thread m_worker;
     mutable std::mutex m_mutex;

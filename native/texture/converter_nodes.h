@@ -30,6 +30,11 @@ float fresnel_dielectric_cos(float cosi, float eta);
 
 /// The Fresnel node: n the normal on the viewer's side, i toward the viewer.
 float fresnel_node(const Vec3& n, const Vec3& i, float ior, bool backfacing);
+/// Cycles' silhouette guard for bent shading normals (Bump, Normal Map): n tilted toward the geometric normal ng
+/// just far enough that the view direction i reflected about it stays above the surface (node_ops.cpp explains
+/// the construction). All three on the viewer's side.
+Vec3 ensure_valid_reflection(const Vec3& ng, const Vec3& i, const Vec3& n);
+
 /// The Layer Weight node's Fresnel (facing = false) or Facing output.
 float layer_weight(const Vec3& n, const Vec3& i, float blend, bool backfacing, bool facing);
 

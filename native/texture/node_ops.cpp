@@ -82,6 +82,8 @@ Vec3 valid_reflection(const Vec3& ng, const Vec3& i, const Vec3& n) {
 
 }  // namespace
 
+Vec3 ensure_valid_reflection(const Vec3& ng, const Vec3& i, const Vec3& n) { return valid_reflection(ng, i, n); }
+
 Vec3 ShaderLibrary::evaluate_node(const ShaderOp& op, const Vec3* regs, const ShadingInputs& in) const {
     const Vec3& a = regs[op.a];
     const Vec3& b = regs[op.b];
@@ -211,6 +213,7 @@ Vec3 ShaderLibrary::evaluate_node(const ShaderOp& op, const Vec3* regs, const Sh
             if (SkyModel(op.i[1]) == SkyModel::Nishita) return m_skies[size_t(m_sky_of_op[size_t(&op - m_ops.data())])].radiance(a);
             return sky_radiance(SkyModel(op.i[1]), &m_consts[op.i[0]], a);
         case ShaderOpCode::Blackbody: return blackbody_rec709(a.x);
+        case ShaderOpCode::Wavelength: return wavelength_rec709(a.x);
         case ShaderOpCode::Curves: {
             // Cycles' RGB/Vector/Float Curves: the baked curves read at (v − min x)/range, extrapolated linearly
             // past the ends, blended with the input by fac.

@@ -4,6 +4,7 @@
 #include "core/math.h"
 #include "texture/color_space.h"
 #include "texture/node_math.h"
+#include "texture/converter_nodes.h"
 #include "texture/shader_program.h"
 
 namespace candela {
@@ -65,7 +66,8 @@ Color convert_to_rgb(ColorModel m, const Color& c) {
 
 /// Cycles 3.4's Normal Map node, on the winding side (the integrator flips the result with the face):
 /// the colour encodes n = 2c − 1 in the chosen space; strength s blends from the unperturbed normal N as
-/// normalize(N + s·(n − N)).
+/// normalize(N + s·(n − N)); then the silhouette guard Bump applies too (ensure_valid_reflection: the view
+/// direction's mirror image about the new normal must stay above the surface).
 Vec3 normal_map(const ShadingInputs& in, NormalMapSpace space, const Color& color, float strength) {
     Vec3 n = color * 2.f - Vec3(1.f);
     Vec3 result;
@@ -82,7 +84,9 @@ Vec3 normal_map(const ShadingInputs& in, NormalMapSpace space, const Color& colo
         result = safe_normalize(object ? in.normal_to_world.vector(n) : n);
     }
     if (strength != 1.f) result = safe_normalize(in.normal + (result - in.normal) * std::fmax(strength, 0.f));
-    return is_black(result) ? in.normal : result;
+    if (is_black(result)) return in.normal;
+    const float side = in.backfacing ? -1.f : 1.f;  // on the viewer's side for the check, then back
+    return ensure_valid_reflection(in.true_normal * side, in.incoming, result * side) * side;
 }
 
 Vec3 coord(const ShadingInputs& in, CoordKind kind, uint32_t offset) {
@@ -114,6 +118,23 @@ Vec3 coord(const ShadingInputs& in, CoordKind kind, uint32_t offset) {
         }
         case CoordKind::ObjectLocation: return in.object_location;
         case CoordKind::ObjectIndex: return Vec3(in.object_index);
+        case CoordKind::IsCameraRay: return Vec3((in.path.flags & LightPathInfo::k_camera) ? 1.f : 0.f);
+        case CoordKind::IsShadowRay: return Vec3((in.path.flags & LightPathInfo::k_shadow) ? 1.f : 0.f);
+        case CoordKind::IsDiffuseRay: return Vec3((in.path.flags & LightPathInfo::k_diffuse) ? 1.f : 0.f);
+        case CoordKind::IsGlossyRay: return Vec3((in.path.flags & LightPathInfo::k_glossy) ? 1.f : 0.f);
+        case CoordKind::IsSingularRay: return Vec3((in.path.flags & LightPathInfo::k_singular) ? 1.f : 0.f);
+        case CoordKind::IsReflectionRay: return Vec3((in.path.flags & LightPathInfo::k_reflection) ? 1.f : 0.f);
+        case CoordKind::IsTransmissionRay: return Vec3((in.path.flags & LightPathInfo::k_transmission) ? 1.f : 0.f);
+        case CoordKind::RayLength: return Vec3(in.path.ray_length);
+        case CoordKind::RayDepth: return Vec3(float(in.path.depth));
+        case CoordKind::DiffuseDepth: return Vec3(float(in.path.diffuse_depth));
+        case CoordKind::GlossyDepth: return Vec3(float(in.path.glossy_depth));
+        case CoordKind::TransparentDepth: return Vec3(float(in.path.transparent_depth));
+        case CoordKind::TransmissionDepth: return Vec3(float(in.path.transmission_depth));
+        case CoordKind::ObjectColor: return in.object_color;
+        case CoordKind::ObjectAlpha: return Vec3(in.object_alpha);
+        case CoordKind::ObjectRandom: return Vec3(in.object_random);
+        case CoordKind::Window: return in.window;
         case CoordKind::Tangent: {
             // The direction around the texture space's Z axis, (−(g_y − ½), g_x − ½, 0), carried to world space as
             // a normal (Cycles does), then projected into the shading plane.

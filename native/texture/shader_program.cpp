@@ -18,13 +18,18 @@ const std::vector<std::string>& shader_op_names() {
         "CONST", "COORD", "IMAGE", "IMAGE_ALPHA", "MIX", "MATH", "RAMP", "RAMP_ALPHA", "LUMINANCE", "AVERAGE",
         "COMBINE", "SEPARATE", "MAPPING", "NORMAL_MAP", "INVERT", "BRIGHT_CONTRAST", "TEX_NOISE", "TEX_WHITE_NOISE",
         "TEX_MUSGRAVE", "TEX_VORONOI", "TEX_WAVE", "TEX_MAGIC", "TEX_CHECKER", "TEX_GRADIENT", "TEX_BRICK",
-        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "ATTRIBUTE", "SKY", "CURVES", "BLACKBODY"};
+        "VECTOR_MATH", "MAP_RANGE", "HUE_SATURATION", "LAYER_WEIGHT", "FRESNEL", "BUMP", "ATTRIBUTE", "SKY", "CURVES", "BLACKBODY", "WAVELENGTH"};
     return names;
 }
 const std::vector<std::string>& coord_kind_names() {
     static const std::vector<std::string> names = {"UV", "GENERATED", "OBJECT", "NORMAL", "WORLD_NORMAL", "INCOMING",
                                                    "POSITION", "TRUE_NORMAL", "BACKFACING", "REFLECTION",
-                                                   "OBJECT_LOCATION", "OBJECT_INDEX", "TANGENT"};
+                                                   "OBJECT_LOCATION", "OBJECT_INDEX", "TANGENT",
+                                                   "IS_CAMERA_RAY", "IS_SHADOW_RAY", "IS_DIFFUSE_RAY", "IS_GLOSSY_RAY",
+                                                   "IS_SINGULAR_RAY", "IS_REFLECTION_RAY", "IS_TRANSMISSION_RAY",
+                                                   "RAY_LENGTH", "RAY_DEPTH", "DIFFUSE_DEPTH", "GLOSSY_DEPTH",
+                                                   "TRANSPARENT_DEPTH", "TRANSMISSION_DEPTH", "OBJECT_COLOR",
+                                                   "OBJECT_ALPHA", "OBJECT_RANDOM", "WINDOW"};
     return names;
 }
 const std::vector<std::string>& image_projection_names() {
@@ -115,6 +120,7 @@ int arity(ShaderOpCode code) {
         case ShaderOpCode::TexGradient:
         case ShaderOpCode::Sky:
         case ShaderOpCode::Blackbody: return 1;
+        case ShaderOpCode::Wavelength: return 1;
         case ShaderOpCode::TexWhiteNoise:
         case ShaderOpCode::TexMagic:
         case ShaderOpCode::LayerWeight:
@@ -192,10 +198,18 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
             const std::string where = "shader program " + std::to_string(p) + ", operation " + std::to_string(r);
             const int n = arity(op.code);
             const uint32_t args[3] = {op.a, op.b, op.c};
-            // Nodes that read the shading point themselves (the normal, the view direction) vary with it.
-            bool varying = op.code == ShaderOpCode::Coord || op.code == ShaderOpCode::NormalMap ||
-                           op.code == ShaderOpCode::LayerWeight || op.code == ShaderOpCode::Fresnel ||
-                           op.code == ShaderOpCode::Bump || op.code == ShaderOpCode::Attribute;
+            // Nodes that read the shading point themselves (the normal, the view direction) vary with it; the Light
+            // Path node's outputs vary with the path instead.
+            const bool path_coord = op.code == ShaderOpCode::Coord && op.i[0] < coord_kind_names().size() &&
+                                    is_light_path_coord(CoordKind(op.i[0]));
+            m_reads_light_path = m_reads_light_path || path_coord;
+            m_reads_window = m_reads_window || (op.code == ShaderOpCode::Coord && op.i[0] == uint32_t(CoordKind::Window));
+            uint8_t varying = (op.code == ShaderOpCode::Coord && !path_coord) || op.code == ShaderOpCode::NormalMap ||
+                                      op.code == ShaderOpCode::LayerWeight || op.code == ShaderOpCode::Fresnel ||
+                                      op.code == ShaderOpCode::Bump || op.code == ShaderOpCode::Attribute
+                                  ? k_spatial
+                                  : 0;
+            if (path_coord) varying |= k_path;
             std::vector<uint32_t> reads(args, args + n);
             const uint32_t imm_regs = shader_op_register_immediates(op.code);
             for (int j = 0; j < 4; ++j)
@@ -204,9 +218,9 @@ ShaderLibrary::ShaderLibrary(TexturePools textures, std::vector<float> ramps, st
                 if (reg >= r)
                     throw InvalidScene(where + " (" + shader_op_names()[size_t(op.code)] + ") reads register " +
                                        std::to_string(reg) + ", which is not computed before it");
-                varying = varying || m_varying[begin + reg] != 0;
+                varying |= m_varying[begin + reg];
             }
-            m_varying[k] = varying ? 1 : 0;
+            m_varying[k] = varying;
             auto need = [&](bool ok, const std::string& what) {
                 if (!ok) throw InvalidScene(where + " (" + shader_op_names()[size_t(op.code)] + "): " + what);
             };

@@ -67,6 +67,7 @@ enum class ShaderOpCode : uint32_t {
     Curves,          // a: fac, b: value(s); i0: ramp (the curves baked over [min x, max x]), i1: offset of (min x,
                      // x range) in shader_consts, i2: 0 per channel (RGB/Vector Curves), 1 one value (Float Curve)
     Blackbody,       // a: temperature (K) → colour of luminance 1
+    Wavelength,      // a: wavelength (nm) → colour (the Wavelength node: the CIE 1931 observer in Rec.709)
 };
 /// Bit k set: immediate i_k of the operation is a register it reads (validated like a, b, c).
 uint32_t shader_op_register_immediates(ShaderOpCode code);
@@ -83,8 +84,17 @@ const std::vector<std::string>& shader_op_names();
 enum class CoordKind : uint32_t {
     Uv, Generated, Object, Normal, WorldNormal, Incoming, Position, TrueNormal, Backfacing, Reflection, ObjectLocation,
     ObjectIndex,  // the object's pass index (Object Info > Object Index)
-    Tangent       // Geometry > Tangent: the tangent around the object's Z axis of Generated space (Cycles' default)
+    Tangent,      // Geometry > Tangent: the tangent around the object's Z axis of Generated space (Cycles' default)
+    // The Light Path node (ShadingInputs::path): 1 or 0 for the ray-type outputs, the counts as values.
+    IsCameraRay, IsShadowRay, IsDiffuseRay, IsGlossyRay, IsSingularRay, IsReflectionRay, IsTransmissionRay,
+    RayLength, RayDepth, DiffuseDepth, GlossyDepth, TransparentDepth, TransmissionDepth,
+    // Object Info > Color, Alpha and Random (the object's colour, its alpha, a hash of its name in [0, 1)).
+    ObjectColor, ObjectAlpha, ObjectRandom,
+    // Texture Coordinate > Window: the point's position on the camera's image, (0, 0) bottom left to (1, 1), z 0.
+    Window,
 };
+/// True for the Light Path node's kinds (they depend on the path, not on the point).
+inline bool is_light_path_coord(CoordKind k) { return k >= CoordKind::IsCameraRay && k <= CoordKind::TransmissionDepth; }
 // Procedural-texture enumerations by their Blender identifiers.
 const std::vector<std::string>& musgrave_type_names();
 const std::vector<std::string>& voronoi_feature_names();
@@ -113,6 +123,22 @@ Vec2 direction_to_equirectangular(const Vec3& d);
 /// The unit direction of equirectangular (u, v).
 Vec3 equirectangular_to_direction(float u, float v);
 
+/// What the Light Path node reads at a shading point: the type of the ray that arrived there and the path's counts,
+/// with Cycles 3.4's meaning (docs/light_paths.md). `flags` holds the ray types (several at once: a diffuse
+/// reflection ray is DIFFUSE | REFLECTION; a camera ray through a transparent surface is still CAMERA). The depths
+/// count the scatterings before the ray (transparent pass-throughs only in transparent_depth). Where no path is
+/// known (light sampling evaluating an emitter, the world's importance map) the flags are 0, as Cycles' emission
+/// evaluation has them, and depth is the shading vertex's depth + 1.
+struct LightPathInfo {
+    enum Flag : uint32_t {
+        k_camera = 1u << 0, k_shadow = 1u << 1, k_diffuse = 1u << 2, k_glossy = 1u << 3, k_singular = 1u << 4,
+        k_reflection = 1u << 5, k_transmission = 1u << 6,
+    };
+    uint32_t flags = 0;
+    float ray_length = 0.f;  // length of the ray segment that reached the point (Cycles' sd->ray_length)
+    int depth = 0, diffuse_depth = 0, glossy_depth = 0, transmission_depth = 0, transparent_depth = 0;
+};
+
 /// What the program may read at one shading point. World-space vectors are camera-relative world axes.
 struct ShadingInputs {
     Vec3 uv{0.f}, generated{0.f}, object{0.f};
@@ -129,6 +155,11 @@ struct ShadingInputs {
     Vec3 true_normal{0.f, 0.f, 1.f};  // geometric normal, winding side
     Vec3 object_location{0.f};        // the object's origin, world
     float object_index = 0.f;         // its pass index
+    Vec3 object_color{1.f};           // Object Info > Color (the object's viewport colour, Object > Viewport Display)
+    float object_alpha = 1.f;         // its alpha
+    float object_random = 0.f;        // Object Info > Random: a hash of the object's name in [0, 1)
+    Vec3 window{0.f};                 // Texture Coordinate > Window (the camera's image coordinates of the point)
+    LightPathInfo path;               // the Light Path node's inputs
     // Mesh attributes (Attribute, Color Attribute, UV Map with a named map): the hit triangle's corner values, 4
     // floats per slot, and its barycentrics. Null: the mesh has none (the attributes read 0).
     const float* attributes = nullptr;
@@ -171,8 +202,17 @@ public:
     uint32_t program_size(uint32_t p) const { return m_program_start[p + 1] - m_program_start[p]; }
     /// True if program p reads coordinates at offset points (a Bump node): ShadingInputs::dp and friends.
     bool uses_differentials(uint32_t p) const { return m_differentials[p] != 0; }
-    /// True if register r of program p depends on the shading point (else it is the same everywhere).
+    /// True if register r of program p depends on the shading point or the path (else it is the same everywhere).
     bool varying(uint32_t p, uint32_t r) const { return m_varying[m_program_start[p] + r] != 0; }
+    /// True if it depends on the point itself (a register that varies only with the path, through a Light Path
+    /// node, is the same at every point of a surface or in every direction of the world).
+    bool spatially_varying(uint32_t p, uint32_t r) const { return (m_varying[m_program_start[p] + r] & k_spatial) != 0; }
+    /// True if it depends on the path (a Light Path node upstream).
+    bool path_dependent(uint32_t p, uint32_t r) const { return (m_varying[m_program_start[p] + r] & k_path) != 0; }
+    /// True if any program reads a Light Path output.
+    bool reads_light_path() const { return m_reads_light_path; }
+    /// True if any program reads Texture Coordinate > Window (ShadingInputs::window is then computed).
+    bool reads_window() const { return m_reads_window; }
 
     /// Runs program p; regs must hold program_size(p) entries.
     void evaluate(uint32_t p, const ShadingInputs& in, Vec3* regs) const;
@@ -200,7 +240,10 @@ private:
     std::vector<float> m_consts;
     std::vector<ShaderOp> m_ops;
     std::vector<uint32_t> m_program_start;
-    std::vector<uint8_t> m_varying;
+    static constexpr uint8_t k_spatial = 1, k_path = 2;
+    std::vector<uint8_t> m_varying;        // per operation: k_spatial | k_path bits
+    bool m_reads_light_path = false;
+    bool m_reads_window = false;
     std::vector<uint8_t> m_differentials;  // per program
     std::vector<NishitaSky> m_skies;       // the Nishita skies, tabulated at load
     std::vector<int32_t> m_sky_of_op;      // per operation: index in m_skies, or −1 (empty without skies)

@@ -74,4 +74,15 @@ Vec3 blackbody_rec709(float kelvin) {
     return lum > 0.f ? rgb / lum : Vec3(0.f);
 }
 
+Vec3 wavelength_rec709(float nm) {
+    const float x = (nm - 380.f) * (1.f / 5.f);
+    if (!(x >= 0.f) || !(x < float(k_cie_5nm_samples - 1))) return Vec3(0.f);
+    const int i = int(x);
+    const float t = x - float(i);
+    const float* a = k_cie_cmf_5nm[i];
+    const float* b = k_cie_cmf_5nm[i + 1];
+    const Vec3 xyz(a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t);
+    return vmax(xyz_to_rec709(xyz) * (1.f / 2.52f), Vec3(0.f));
+}
+
 }  // namespace candela

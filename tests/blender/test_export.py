@@ -33,6 +33,9 @@ SCHEMA = {   # key: (dtype, trailing shape)
     "closure_material": (np.uint32, ()),
     "closure_type": (np.uint32, ()),
     "closure_params": (np.float32, (len(schema.closure_columns()),)),
+    "instance_color": (np.float32, (4,)),
+    "instance_random": (np.float32, ()),
+    "instance_terminator": (np.float32, ()),
 }
 
 

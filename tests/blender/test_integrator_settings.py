@@ -84,7 +84,7 @@ def test_the_chosen_integrator_has_its_sub_panels():
     _, _, _, schema, ui_render = _modules()
     labels = {cls.bl_label for cls in ui_render.classes if getattr(cls, "bl_parent_id", "") == "CANDELA_RENDER_PT_sampling"}
     groups = {spec["group"] for spec in schema.integrator_params()["PATH"] if spec["group"]}
-    assert groups == {"Light Paths", "Light Sampling"} and groups <= labels
+    assert groups == {"Light Paths", "Max Bounces", "Clamping", "Caustics", "Light Sampling"} and groups <= labels
     assert ui_render.condition_holds(empty_scene().candela, "rr_mode!=OFF")
     assert not ui_render.condition_holds(empty_scene().candela, "light_selection==WARD")
 

@@ -223,9 +223,9 @@ def test_tangent_space_normal_map_matches_cycles(tmp_path):
     """A 4 × 4 normal map of random tilts up to 30° in every direction (strength 0.8) on the checker plane, under a
     sun off the vertical. Where a pixel lies inside one texel of both images its radiance depends only on the
     shading normal n: Candela gives albedo·E/π·max(0, n·l) exactly (tangent, bitangent sign, green direction and
-    strength blend as in Cycles), and Cycles multiplies that by its shadow-terminator term for bumped diffuse
-    closures (Chiang et al. 2019: g = (Ng·l)/((n·l)(Ng·n)), 1 for g ≥ 1, else g + g² − g³), which Candela does not
-    apply yet. Both relations are checked to float precision, so a change on either side shows."""
+    strength blend as in Cycles), times the shadow-terminator term both engines apply to bumped diffuse closures
+    (Chiang et al. 2019: g = (Ng·l)/((n·l)(Ng·n)), 1 for g ≥ 1, else g + g² − g³). Both are checked to float
+    precision, so a change on either side shows."""
     rng = np.random.default_rng(3)
     theta, phi = rng.uniform(0.0, math.radians(30.0), (4, 4)), rng.uniform(0.0, 2.0 * math.pi, (4, 4))
     normals = np.stack([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)], axis=-1)
@@ -261,10 +261,11 @@ def test_tangent_space_normal_map_matches_cycles(tmp_path):
     cos = np.maximum(n_pix @ light, 0.0)
     want = albedo * SUN / math.pi * cos[..., None]
     assert inside.sum() > 0.4 * inside.size
-    assert np.allclose(images['CANDELA'][inside], want[inside], rtol=1e-4, atol=1e-6)
     g = (ng @ light) / ((n_pix @ light) * (n_pix @ ng))
     term = np.where(g >= 1.0, 1.0, np.where(g < 0.0, 0.0, g + g * g - g ** 3))
     assert (term[inside] < 0.999).any()   # the sun is low enough for the term to matter somewhere
+    # Both engines apply the bump shadowing term (docs/light_paths.md, "Bump shadowing").
+    assert np.allclose(images['CANDELA'][inside], (want * term[..., None])[inside], rtol=1e-4, atol=1e-6)
     assert np.allclose(images['CYCLES'][inside], (want * term[..., None])[inside], rtol=1e-3, atol=1e-6)
 
 

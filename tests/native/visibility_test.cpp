@@ -89,7 +89,9 @@ TEST(Visibility, ContinuationRayTypesFollowCycles) {
     s.flags = k_bsdf_transmission | k_bsdf_specular;
     s.eta = 1.5f;  // glass
     EXPECT_EQ(continuation_ray_type(s, k_ray_camera), k_ray_transmission);
-    s.eta = 1.f;  // transparent: the ray keeps its type
+    s.eta = 1.f;  // glass of IOR 1 still refracts (Cycles: a transmission ray), only a Transparent BSDF does not
+    EXPECT_EQ(continuation_ray_type(s, k_ray_camera), k_ray_transmission);
+    s.flags = k_bsdf_transmission | k_bsdf_specular | k_bsdf_transparent;  // transparent: the ray keeps its type
     EXPECT_EQ(continuation_ray_type(s, k_ray_camera), k_ray_camera);
     EXPECT_EQ(continuation_ray_type(s, k_ray_diffuse), k_ray_diffuse);
 }

@@ -5,6 +5,7 @@ world). Built inside Blender; tests/parity/parity.py --nodes renders them with b
 Geometry: PLANE, a 2 × 2 m grid (UVs 0..1) under a rotated, scaled, moved object transform, seen straight down by
 an orthographic camera that it fills (object, generated and UV coordinates all differ from world ones); SPHERE, a
 smooth UV sphere seen in perspective (normals and the view direction vary: Fresnel, Layer Weight, Geometry).
+The *_LIT scenes light a white diffuse PLANE, SPHERE or LOWPOLY (the sphere with 16 × 8 faces) by a sun instead.
 
 Each scene: NODE_SCENES[name] = (geometry, graph), graph(nt, coord) returning the socket fed to the Emission colour;
 coord is a Texture Coordinate node. Values stay non-negative (emission is), so signed outputs go through
@@ -126,6 +127,27 @@ def _blackbody(nt, temperature):
     b = node(nt, "ShaderNodeBlackbody")
     nt.links.new(temperature, b.inputs["Temperature"])
     return b.outputs["Color"]
+
+
+def _wavelength(nt, value):
+    w = node(nt, "ShaderNodeWavelength")
+    nt.links.new(value, w.inputs["Wavelength"])
+    return w.outputs["Color"]
+
+
+def object_info_output(name):
+    return lambda nt, coord: node(nt, "ShaderNodeObjectInfo").outputs[name]
+
+
+def light_path_output(name):
+    return lambda nt, coord: node(nt, "ShaderNodeLightPath").outputs[name]
+
+
+def camera_only_world(nt, coord):
+    """A Light Path trick: the camera sees a white world, everything else is lit by a blue one."""
+    mix = node(nt, "ShaderNodeMixRGB", Color1=(0.1, 0.2, 0.8, 1.0), Color2=(1.0, 1.0, 1.0, 1.0))
+    nt.links.new(node(nt, "ShaderNodeLightPath").outputs["Is Camera Ray"], mix.inputs["Fac"])
+    return mix.outputs["Color"]
 
 
 def hue_saturation(nt, coord):
@@ -334,6 +356,13 @@ NODE_SCENES = {
     "node_float_curve": ("PLANE", curves("ShaderNodeFloatCurve", tex("ShaderNodeTexNoise", Scale=2.0), "Value",
                                          _edit_float)),
     "node_object_info_index": ("PLANE", object_index),
+    "node_object_info_color": ("PLANE", object_info_output("Color")),
+    "node_object_info_alpha": ("PLANE", object_info_output("Alpha")),
+    "node_object_info_random": ("PLANE", object_info_output("Random")),
+    "node_texcoord_window": ("PLANE", coord_output("Window")),
+    "node_wavelength": ("PLANE", lambda nt, c: _wavelength(nt, map_range("LINEAR", To_Min=380.0, To_Max=780.0)(nt, c))),
+    "node_light_path_ray_length": ("SPHERE", scaled(light_path_output("Ray Length"), 0.2)),
+    "world_light_path_camera": ("SKY_LIT", camera_only_world),
     "bump_plane_lit": ("PLANE_LIT", (tex("ShaderNodeTexNoise", Scale=3.0, Detail=2.0), False)),
     "displacement_plane_lit": ("PLANE_LIT", (tex("ShaderNodeTexWave", Scale=1.5, Distortion=1.0), True)),
     "node_bump_noise": ("PLANE", bumped(tex("ShaderNodeTexNoise", Scale=3.0, Detail=1.0), distance=0.2)),
@@ -342,6 +371,12 @@ NODE_SCENES = {
                                                 invert=True)),
     "node_bump_sphere": ("SPHERE", bumped(tex("ShaderNodeTexNoise", vector="Object", Scale=2.0, Detail=2.0),
                                           distance=0.3, then=layer_weight_of)),
+    # A bump-mapped sphere under a sun: Cycles multiplies the BSDF of a bumped closure by Chiang et al.'s (2019)
+    # bump shadowing term (1.06× Cycles without it; docs/light_paths.md, "Bump shadowing").
+    "bump_sphere_lit": ("SPHERE_LIT", (tex("ShaderNodeTexVoronoi", "Distance", vector="Object", Scale=3.0), False)),
+    # A smooth-shaded low-poly sphere (16 × 8 faces) under a sun, no bump: Cycles' shadow terminator geometry
+    # offset (the object's default 0.1; docs/light_paths.md, "Shadow terminator offset").
+    "terminator_sphere_lit": ("LOWPOLY_LIT", None),
 }
 # Not in the suite until they match: the Nishita sky from published spectral tables, not Cycles' own, measured at
 # 1.26 (sky, 48 px), 0.98 with 13–64 % off per block (sun disc in view) and 1.054 (a ground lit by sky and sun)
@@ -349,10 +384,6 @@ NODE_SCENES = {
 NODE_EXTRA_SCENES = {
     # The whole-render timing scene (procedural textures only): `parity.py --nodes --scenes procedural_heavy`.
     "procedural_heavy": ("PROCEDURAL_HEAVY", None),
-    # A bump-mapped sphere under a sun: 1.06× Cycles, up to 1.9× near the terminator, where Cycles multiplies the
-    # BSDF of a bumped closure by Chiang et al.'s (2019) bump shadowing term; that belongs in the integrators'
-    # shared BSDF evaluation (docs/textures.md, "Bump").
-    "bump_sphere_lit": ("SPHERE_LIT", (tex("ShaderNodeTexVoronoi", "Distance", vector="Object", Scale=3.0), False)),
     # Blackbody below 1500 K: Candela integrates Planck's law over the 20 nm CIE table, Cycles uses fitted curves;
     # 0.997 overall, green up to 2 % low and the (tiny) blue channel up to 12 % off near 800 K.
     "node_blackbody_low": ("PLANE", lambda nt, c: _blackbody(nt, map_range("LINEAR", To_Min=800.0, To_Max=2500.0)(nt, c))),
@@ -452,6 +483,8 @@ def _lit_material(name, height_graph, displacement):
     out = nt.nodes.new("ShaderNodeOutputMaterial")
     diffuse = node(nt, "ShaderNodeBsdfDiffuse", Color=(0.8, 0.8, 0.8, 1.0))
     nt.links.new(diffuse.outputs[0], out.inputs["Surface"])
+    if height_graph is None:   # no bump: the plain diffuse surface
+        return mat
     coord = nt.nodes.new("ShaderNodeTexCoord")
     if displacement:
         d = node(nt, "ShaderNodeDisplacement", Midlevel=0.5, Scale=0.15)
@@ -499,6 +532,13 @@ def build_node_scene(name, scene, size=128, out_dir="."):
         sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
         sun.data.energy, sun.data.angle = 3.0, 0.0
         sun.rotation_euler = (math.radians(30.0), 0.0, math.radians(30.0))
+        scene.collection.objects.link(sun)
+        return 1.0
+    if geometry == "LOWPOLY_LIT":
+        build_node_scene_geometry(name, scene, "LOWPOLY", _lit_material(name, None, False))
+        sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+        sun.data.energy, sun.data.angle = 3.0, 0.0
+        sun.rotation_euler = (math.radians(70.0), 0.0, math.radians(60.0))   # a terminator across the view
         scene.collection.objects.link(sun)
         return 1.0
     if geometry in ("PLANE_LIT", "SPHERE_LIT"):
@@ -549,7 +589,8 @@ def build_node_scene_geometry(name, scene, geometry, mat):
         _camera(scene, (0.1, -0.1, 3.0), (0.0, 0.0, 0.0), ortho_scale=1.7)
     else:
         bm = bmesh.new()
-        bmesh.ops.create_uvsphere(bm, u_segments=64, v_segments=32, radius=1.0)
+        lowpoly = geometry == "LOWPOLY"
+        bmesh.ops.create_uvsphere(bm, u_segments=16 if lowpoly else 64, v_segments=8 if lowpoly else 32, radius=1.0)
         me = bpy.data.meshes.new(name)
         bm.to_mesh(me)
         bm.free()
@@ -560,4 +601,5 @@ def build_node_scene_geometry(name, scene, geometry, mat):
         _camera(scene, (0.0, -4.5, 0.6), (82.0, 0.0, 0.0), lens=60.0)
     me.materials.append(mat)
     ob.pass_index = 3
+    ob.color = (0.9, 0.45, 0.2, 0.6)   # Object Info > Color and Alpha
     scene.collection.objects.link(ob)

@@ -226,6 +226,45 @@ def build_principled_spheres(scene, **_):
     return 2.0
 
 
+# Cycles 3.4's default Light Paths (Render > Light Paths), which the *_cycles_defaults scenes render with; Candela
+# takes them through the add-on's "Light Paths from Cycles" copy (addon/candela/params.py, docs/light_paths.md).
+CYCLES_DEFAULT_LIGHT_PATHS = {"max_bounces": 12, "diffuse_bounces": 4, "glossy_bounces": 4, "transmission_bounces": 12,
+                              "transparent_max_bounces": 8, "sample_clamp_direct": 0.0, "sample_clamp_indirect": 10.0,
+                              "blur_glossy": 1.0, "caustics_reflective": True, "caustics_refractive": True}
+
+
+def _open_room(scene, floor, back):
+    ex.rectangle(scene, "Floor", floor, Matrix.Diagonal((6, 6, 1, 1)))
+    ex.rectangle(scene, "Back", back, Matrix.Translation((0, 2.0, 2.0)) @ Matrix.Rotation(math.radians(90.0), 4, "X")
+                 @ Matrix.Diagonal((6, 2, 1, 1)))
+    light(scene, "Key", "AREA", (1.0, -2.0, 3.5), 400.0, rotation_deg=(35.0, 0.0, 15.0), shape="RECTANGLE",
+          size=1.0, size_y=0.6)
+    ex.camera(scene, (0.0, -6.0, 1.6), (80.0, 0.0, 0.0), lens=42.0)
+    ex.world(scene, (0.6, 0.7, 1.0), 0.1)
+
+
+def build_glossy_cycles_defaults(scene, **_):
+    """Glossy spheres (sharp, medium, rough) in front of a glossy back wall on a diffuse floor, under a small area
+    light, with Cycles' default Light Paths: glossy inter-reflections past 4 bounces are cut, sharp reflections seen
+    after a diffuse bounce are blurred (Filter Glossy 1) and indirect light is clamped at 10."""
+    _open_room(scene, ex.diffuse("Floor", (0.6, 0.6, 0.6)), ex.glossy("Back", (0.7, 0.7, 0.75), 0.15, "GGX"))
+    for i, r in enumerate((0.02, 0.15, 0.4)):
+        ex.sphere(scene, f"Glossy{i}", ex.glossy(f"Glossy{i}", (0.9, 0.8, 0.6), r, "GGX"), (-1.1 + 1.1 * i, 0.0, 0.5),
+                  0.5)
+    return 2.0
+
+
+def build_glass_cycles_defaults(scene, **_):
+    """A sharp glass sphere and a rough Principled glass sphere on a diffuse floor under a small area light, with
+    Cycles' default Light Paths: the caustics on the floor come through Filter Glossy (sharp glass made rough after
+    the diffuse bounce), transmission is cut after 12 and indirect light is clamped at 10."""
+    _open_room(scene, ex.diffuse("Floor", (0.6, 0.6, 0.6)), ex.diffuse("Back", (0.6, 0.55, 0.5)))
+    ex.sphere(scene, "Glass", ex.glass("Glass", 1.5), (-0.7, 0.0, 0.5), 0.5)
+    ex.sphere(scene, "RoughGlass", principled("RoughGlass", base_color=(0.9, 0.95, 1.0), transmission=1.0,
+                                              roughness=0.25, ior=1.45), (0.7, 0.0, 0.5), 0.5)
+    return 2.0
+
+
 def build_environment(scene, hdr_path=None, **_):
     """Lit by the world only: a constant colour (or, with `hdr_path`, an equirectangular environment)."""
     ex.rectangle(scene, "Floor", ex.diffuse("Floor", (0.7, 0.7, 0.7)), Matrix.Diagonal((5, 5, 1, 1)))
@@ -298,6 +337,8 @@ SCENES.update({
     "cornell_quad_near_ceiling": build_cornell_quad_near_ceiling,
     "principled_spheres": build_principled_spheres,
     "environment": build_environment,
+    "glossy_cycles_defaults": build_glossy_cycles_defaults,
+    "glass_cycles_defaults": build_glass_cycles_defaults,
 })
 # Not in the default list until Candela reads Environment Texture nodes (issue #3, h-textures): run it with
 # `--scenes environment_hdr`, then add it to parity.py's ALL_SCENES.
@@ -325,4 +366,10 @@ def build(name, scene=None, size=128, threads=0, out_dir="."):
     scene.render.resolution_y = max(1, round(size / aspect))
     cb.configure_cycles(scene, threads=threads)
     cb.configure_candela(scene, threads=threads)
+    if name.endswith("_cycles_defaults"):
+        for key, value in CYCLES_DEFAULT_LIGHT_PATHS.items():
+            setattr(scene.cycles, key, value)
+        if hasattr(scene, "candela"):
+            from candela.params import copy_cycles_light_paths
+            copy_cycles_light_paths(scene)
     return scene

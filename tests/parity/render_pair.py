@@ -61,7 +61,7 @@ def mirror_settings(scene, seed, integrator="PATH"):
     p.integrator = integrator
     if integrator == "PATH":  # the other integrators choose lights their own way (or publish the same setting)
         p.light_selection = CANDELA_LIGHT_SELECTION
-    p.clamp_indirect = 0.0
+    p.clamp_indirect = c.sample_clamp_indirect   # 0 but in the *_cycles_defaults scenes (parity_scenes.py)
     p.noise_threshold = 0.0
     p.time_limit = 0.0
     r = scene.render.image_settings

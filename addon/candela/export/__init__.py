@@ -13,7 +13,7 @@ import numpy as np
 from .. import schema
 from .camera import camera_to_world, render_camera
 from .common import ExportError, Warnings
-from .geometry import GeometryTable
+from .geometry import GeometryTable, random_from_id
 from .lights import LightTable
 from .materials import MaterialTable
 from .mesh import read_mesh
@@ -101,6 +101,10 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
     lights = LightTable(warnings)
     bits = schema.instance_flags()
     view_layer = _original_view_layer(depsgraph)
+    if getattr(scene.render, "use_motion_blur", False):
+        # Not yet (issue 21): objects and camera are exported at the current frame's time only.
+        warnings.add("Candela: Motion Blur is not supported yet: the frame is rendered at its current time, "
+                     "without blur")
 
     for i, inst in enumerate(depsgraph.object_instances):
         if i % BREAK_EVERY == BREAK_EVERY - 1:
@@ -118,7 +122,9 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
         if ob.type == 'LIGHT':
             lights.add(ob.data, matrix, visible_camera=ob.visible_camera)
         elif inst.show_self:
-            geometry.add(ob, matrix, flags=object_flags(inst, view_layer, bits), pass_index=ob.pass_index)
+            random = random_from_id(inst.random_id) if inst.is_instance else None
+            geometry.add(ob, matrix, flags=object_flags(inst, view_layer, bits), pass_index=ob.pass_index,
+                         random=random)
 
     world = world_arrays(scene.world, warnings, tables)
     if geometry.triangle_count == 0 and not lights.rows and not _world_emits(world):

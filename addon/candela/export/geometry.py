@@ -23,6 +23,9 @@ class GeometryTable:
         self.transforms = []
         self.flags = []             # per instance: `instance_flags` bits (ray visibility, holdout)
         self.pass_indices = []      # per instance: the object's pass index (IndexOB)
+        self.colors = []            # per instance: Object Info > Color and Alpha (the object's colour)
+        self.randoms = []           # per instance: Object Info > Random
+        self.terminators = []       # per instance: Cycles' shadow terminator geometry offset
         self.mesh_objects = []      # per mesh: names of the objects drawing it (for messages)
         self.instance_objects = []  # per instance: its object's name
 
@@ -32,9 +35,10 @@ class GeometryTable:
         data_ptr = ob.data.as_pointer() if ob.type == 'MESH' and ob.data is not None else ob.as_pointer()
         return data_ptr, tuple(m.as_pointer() if m is not None else 0 for m in slots)
 
-    def add(self, ob, matrix, flags=0x1F, pass_index=0):
+    def add(self, ob, matrix, flags=0x1F, pass_index=0, random=None):
         """Add one instance of the evaluated object `ob` with object → world `matrix` ((4, 4) float32), its
-        `instance_flags` bits (default: visible to every ray, no holdout) and pass index."""
+        `instance_flags` bits (default: visible to every ray, no holdout), pass index and Object Info > Random
+        (default: Cycles' hash of the object's name)."""
         # Blender keeps an infinite scale as a huge finite matrix: treat anything beyond 1e30 as not finite.
         if not np.isfinite(matrix).all() or np.abs(matrix).max() > 1e30:
             raise ExportError(f"object '{ob.name}' has a non-finite transform (NaN or Inf in its location, "
@@ -49,6 +53,10 @@ class GeometryTable:
             self.transforms.append(matrix)
             self.flags.append(flags)
             self.pass_indices.append(pass_index)
+            self.colors.append(tuple(getattr(ob, "color", (1.0, 1.0, 1.0, 1.0))))
+            self.randoms.append(object_random(ob.name) if random is None else random)
+            cycles = getattr(ob, "cycles", None)
+            self.terminators.append(float(getattr(cycles, "shadow_terminator_geometry_offset", 0.1)))
             self.instance_objects.append(ob.name)
             if len(self.mesh_objects[index]) < 4:
                 self.mesh_objects[index].append(ob.name)
@@ -128,7 +136,47 @@ class GeometryTable:
             "instance_transform": np.array(self.transforms, np.float32).reshape(-1, 4, 4),
             "instance_flags": np.array(self.flags, np.uint8),
             "instance_pass_index": np.array(self.pass_indices, np.uint32),
+            "instance_color": np.array(self.colors, np.float32).reshape(-1, 4),
+            "instance_random": np.array(self.randoms, np.float32),
+            "instance_terminator": np.clip(np.array(self.terminators, np.float32), 0.0, 1.0),
         }
+
+
+def _rot(x, k):
+    return ((x << k) | (x >> (32 - k))) & 0xFFFFFFFF
+
+
+def hash_uint2(kx, ky):
+    """Bob Jenkins' lookup3 final mix of two words (public domain; the hash Cycles' textures use too)."""
+    a = b = c = (0xdeadbeef + (2 << 2) + 13) & 0xFFFFFFFF
+    b = (b + ky) & 0xFFFFFFFF
+    a = (a + kx) & 0xFFFFFFFF
+    c ^= b; c = (c - _rot(b, 14)) & 0xFFFFFFFF
+    a ^= c; a = (a - _rot(c, 11)) & 0xFFFFFFFF
+    b ^= a; b = (b - _rot(a, 25)) & 0xFFFFFFFF
+    c ^= b; c = (c - _rot(b, 16)) & 0xFFFFFFFF
+    a ^= c; a = (a - _rot(c, 4)) & 0xFFFFFFFF
+    b ^= a; b = (b - _rot(a, 14)) & 0xFFFFFFFF
+    c ^= b; c = (c - _rot(b, 24)) & 0xFFFFFFFF
+    return c
+
+
+def string_hash(text):
+    """The 37-multiplier string hash (h = 37·h + byte) Cycles names objects' random numbers by."""
+    h = 0
+    for byte in text.encode("utf-8"):
+        h = (h * 37 + byte) & 0xFFFFFFFF
+    return h
+
+
+def object_random(name):
+    """Object Info > Random of an object that is not an instance: a hash of its name mapped to [0, 1], as Cycles 3.4
+    (an instance's comes from Blender's per-instance random_id instead)."""
+    return random_from_id(hash_uint2(string_hash(name), 0))
+
+
+def random_from_id(random_id):
+    return float(np.float32(random_id & 0xFFFFFFFF) * np.float32(1.0 / 0xFFFFFFFF))
 
 
 def _joined(parts, dtype):

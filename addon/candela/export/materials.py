@@ -55,6 +55,7 @@ class _Reader:
         self.closures, self.emission = [], (0.0, 0.0, 0.0)
         self.holdout = (0.0, 0.0, 0.0)   # Holdout closure weight, a constant or a register (Cycles: alpha loses it)
         self.normal, self._normal_from = None, None
+        self.normal_from_displacement = False   # Cycles moves the smooth normal itself then: no bump shadowing
 
     def warn(self, message):
         self.warnings.add(f"Candela: {self.owner}: {message}")
@@ -103,6 +104,7 @@ class _Reader:
             self.warn("the Displacement output and a BSDF's Normal input both set the normal; using the BSDF's")
             return
         self.normal = normal
+        self.normal_from_displacement = True
 
     def distribution(self, node, supported=("GGX", "BECKMANN")):
         d = getattr(node, "distribution", "GGX")
@@ -205,6 +207,7 @@ def read_material(material, warnings, tables=None):
     # A material of pure emission (or all-black closures) must not fall back to the base colour: mark it black.
     return {"base": (0.0, 0.0, 0.0) if not reader.closures else base, "emission": reader.emission,
             "closures": reader.closures, "holdout": reader.holdout, "normal": reader.normal,
+            "normal_from_displacement": reader.normal_from_displacement,
             "program": program, "uses": frozenset(reader.nodes.uses)}
 
 
@@ -246,7 +249,9 @@ class MaterialTable:
                 self.tables.bind("EMISSION", index, 0, 3, m["program"], emission)
             table.append(schema.row(columns, values))
             if m["normal"] is not None:
-                self.tables.bind("NORMAL", index, 0, 3, m["program"], m["normal"])
+                # Column 1 marks a normal from the Displacement output (docs/architecture.md, input_bindings).
+                self.tables.bind("NORMAL", index, int(m.get("normal_from_displacement", False)), 3, m["program"],
+                                 m["normal"])
             if not is_const(m.get("holdout", 0.0)):
                 self.tables.bind("HOLDOUT", index, 0, 3, m["program"], m["holdout"])
             for kind, closure_values in m["closures"]:

@@ -239,3 +239,6 @@ class ProceduralNodes:
 
     def _ShaderNodeBlackbody(self, node, out, ctx):
         return self.program.op("BLACKBODY", self.scalar(node, "Temperature", ctx))
+
+    def _ShaderNodeWavelength(self, node, out, ctx):
+        return self.program.op("WAVELENGTH", self.scalar(node, "Wavelength", ctx))

@@ -199,8 +199,11 @@ class NodeCompiler(ProceduralNodes):
             # Cycles' camera space looks down +Z (Blender's camera looks down −Z).
             flip = mathutils.Matrix.Diagonal((1.0, 1.0, -1.0, 1.0))
             return self.affine(flip @ camera.matrix_world.normalized().inverted(), self.coord("POSITION"))
+        if out.identifier == "Window" and self.world:
+            self.unsupported(node, "output 'Window' is not supported in the world yet")
+            return None
         kind = {"Generated": "GENERATED", "Normal": "NORMAL", "UV": "UV", "Object": "OBJECT",
-                "Reflection": "REFLECTION"}.get(out.identifier)
+                "Reflection": "REFLECTION", "Window": "WINDOW"}.get(out.identifier)
         if kind is None:
             self.unsupported(node, f"output '{out.name}' is not supported yet")
             return None
@@ -219,10 +222,25 @@ class NodeCompiler(ProceduralNodes):
             return (0.0, 0.0, 0.0)
         if out.identifier == "Material Index":
             return (float(self.material_index),) * 3
-        kind = {"Location": "OBJECT_LOCATION", "Object Index": "OBJECT_INDEX"}.get(out.identifier)
+        kind = {"Location": "OBJECT_LOCATION", "Object Index": "OBJECT_INDEX", "Color": "OBJECT_COLOR",
+                "Alpha": "OBJECT_ALPHA", "Random": "OBJECT_RANDOM"}.get(out.identifier)
         if kind is None:
             self.unsupported(node, f"output '{out.name}' is not supported yet")
             return None
+        return self.coord(kind)
+
+    # The Light Path node: its outputs by the Cycles 3.4 names (docs/light_paths.md).
+    _LIGHT_PATH = {"Is Camera Ray": "IS_CAMERA_RAY", "Is Shadow Ray": "IS_SHADOW_RAY",
+                   "Is Diffuse Ray": "IS_DIFFUSE_RAY", "Is Glossy Ray": "IS_GLOSSY_RAY",
+                   "Is Singular Ray": "IS_SINGULAR_RAY", "Is Reflection Ray": "IS_REFLECTION_RAY",
+                   "Is Transmission Ray": "IS_TRANSMISSION_RAY", "Ray Length": "RAY_LENGTH",
+                   "Ray Depth": "RAY_DEPTH", "Diffuse Depth": "DIFFUSE_DEPTH", "Glossy Depth": "GLOSSY_DEPTH",
+                   "Transparent Depth": "TRANSPARENT_DEPTH", "Transmission Depth": "TRANSMISSION_DEPTH"}
+
+    def _ShaderNodeLightPath(self, node, out, ctx):
+        kind = self._LIGHT_PATH.get(out.identifier)
+        if kind is None:   # Is Volume Scatter Ray: Candela has no volumes, so no ray is one
+            return (0.0, 0.0, 0.0)
         return self.coord(kind)
 
     def camera(self):

@@ -26,6 +26,21 @@ class CANDELA_RENDER_PT_sampling(CandelaPanel, bpy.types.Panel):
         row = col.row(align=True)
         row.prop(settings, "seed")
         row.prop(settings, "use_animated_seed", text="", icon='TIME')
+        if getattr(context.scene, "cycles", None) is not None and hasattr(settings, "diffuse_bounces"):
+            col.operator("candela.copy_cycles_light_paths", icon='IMPORT')
+
+
+class CANDELA_OT_copy_cycles_light_paths(bpy.types.Operator):
+    """Set Candela's bounce limits, clamps, Filter Glossy and caustics switches to this scene's Cycles values"""
+    bl_idname = "candela.copy_cycles_light_paths"
+    bl_label = "Light Paths from Cycles"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        from ..params import copy_cycles_light_paths
+        copied = copy_cycles_light_paths(context.scene)
+        self.report({'INFO'}, f"Candela: copied {len(copied)} Light Paths settings from Cycles")
+        return {'FINISHED'}
 
 
 class CANDELA_RENDER_PT_sampling_viewport(CandelaPanel, bpy.types.Panel):
@@ -60,6 +75,15 @@ class CANDELA_RENDER_PT_film(CandelaPanel, bpy.types.Panel):
         sub.active = settings.pixel_filter != 'BOX'
         sub.prop(settings, "filter_width", text="Width")
         col.prop(context.scene.render, "film_transparent", text="Transparent")
+        cycles = getattr(context.scene, "cycles", None)
+        if cycles is not None:   # Cycles' own Film settings, shared with it (addon/candela/params.py)
+            sub = col.column()
+            sub.active = context.scene.render.film_transparent
+            sub.prop(cycles, "film_transparent_glass", text="Transparent Glass")
+            sub2 = sub.column()
+            sub2.active = cycles.film_transparent_glass
+            sub2.prop(cycles, "film_transparent_roughness", text="Roughness Threshold")
+            col.prop(cycles, "film_exposure", text="Exposure")
 
 
 class CANDELA_RENDER_PT_simplify(CandelaPanel, bpy.types.Panel):
@@ -151,5 +175,5 @@ def settings_panels():
     return tuple(panels)
 
 
-classes = ((CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_sampling_viewport) + settings_panels() +
-           (CANDELA_RENDER_PT_film, CANDELA_RENDER_PT_simplify))
+classes = ((CANDELA_RENDER_PT_sampling, CANDELA_RENDER_PT_sampling_viewport, CANDELA_OT_copy_cycles_light_paths) +
+           settings_panels() + (CANDELA_RENDER_PT_film, CANDELA_RENDER_PT_simplify))

@@ -94,6 +94,8 @@ public:
         if (strategies) publish_strategy_images(*strategies, ctx);
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
+    // Its BSDF is VertexBsdf's, which applies bump shadowing (tests/native/light_paths_test.cpp).
+    uint32_t honoured_features() const override { return k_feature_bump_shadowing; }
 
 private:
     BdptSettings m_settings;

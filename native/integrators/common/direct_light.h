@@ -75,45 +75,60 @@ struct DirectLightSample {
 /// Next-event estimation of light `li` (selected with probability pmf) at vertex v for a path of throughput beta
 /// arriving from wo_local, with the weight weight(ls, wi_local, density) → w of the sample (density = k·pmf·p_light):
 /// the contribution is β·f·Li·|cos|·w/density. `rays` counts the shadow ray.
+/// `shadow`: transparent shadows (shadow rays through Transparent surfaces, shaded with its Light Path inputs);
+/// null: every surface blocks. Objects with a shadow terminator offset start their shadow rays from the lifted
+/// point (shadow_ray_origin).
 template <class Weight>
 inline __attribute__((always_inline)) DirectLightSample sample_direct_light_weighted(
     const Scene& scene, const DirectLightRules& rules, const SurfaceHit& hit, const SurfaceVertex& v, SpawnPoints& spawn,
     const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local, const Color& beta, uint32_t li, float pmf,
-    Vec2 u, Weight&& weight, uint64_t& rays) {
+    Vec2 u, Weight&& weight, uint64_t& rays, const ShadowRayInputs* shadow = nullptr) {
     DirectLightSample out;
     const LightSample ls = light_sample_li(scene.lights()[li], ctx, u, rules.light_pdf);
     if (!ls.valid() || (rules.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return out;
     const Vec3 wi_local = v.frame.to_local(ls.wi);
-    // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks).
+    // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks) — except, as in Cycles,
+    // for a light above the shading hemisphere but below the facet of a smooth triangle with a shadow terminator
+    // offset: the lifted shadow ray, which its own facet may block, decides (docs/light_paths.md).
     const float cos_g = dot(ls.wi, v.ng);
-    if (leaks(cos_g, wi_local.z)) return out;
+    const bool below_facet = leaks(cos_g, wi_local.z);
+    if (below_facet && !(wi_local.z > 0.f && cos_g < 0.f && scene.terminator_lifts(hit))) return out;
     const Color f = bsdf.f(wo_local, wi_local) * std::fabs(wi_local.z);
     if (is_black(f)) return out;
     ++rays;
-    if (shadow_ray_blocked(scene, hit, spawn.origin(cos_g > 0.f), ls)) return out;
+    const bool front = below_facet ? true : cos_g > 0.f;
+    const Vec3 origin = shadow_ray_origin(scene, hit, v.backfacing ? -hit.ns : hit.ns, v.ng, ls.wi, front, spawn);
+    Color through(1.f);
+    if (shadow && scene.has_transparent_materials()) {
+        through = shadow_ray_transmittance(scene, hit, origin, ls, *shadow, !below_facet);
+        if (is_black(through)) return out;
+    } else if (shadow_ray_blocked(scene, hit, origin, ls, !below_facet)) {
+        return out;
+    }
     const int k = rules.light_samples;
     const float density = float(k) * pmf * ls.pdf;
     const float w = weight(ls, wi_local, density);
     out.contribution = beta * f * ls.Li * (w / density);
-    out.visible = double(luminance(ls.Li)) * std::fabs(wi_local.z) / (double(k) * double(ls.pdf));
+    if (shadow) out.contribution *= through;  // (exactly 1 without transparent materials)
+    out.visible = double(luminance(ls.Li * through)) * std::fabs(wi_local.z) / (double(k) * double(ls.pdf));
     return out;
 }
 
 /// Next-event estimation of light `li` (selected with probability pmf) at vertex v for a path of throughput beta
 /// arriving from wo_local. `continuation_pdf(wi_local)` is the density of the integrator's continuation strategy
-/// (for MIS); `rays` counts the shadow ray.
+/// (for MIS); `rays` counts the shadow ray; `shadow` as for sample_direct_light_weighted.
 template <class ContinuationPdf>
 inline __attribute__((always_inline)) DirectLightSample sample_direct_light(
     const Scene& scene, const DirectLightRules& rules, const SurfaceHit& hit, const SurfaceVertex& v, SpawnPoints& spawn,
     const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local, const Color& beta, uint32_t li, float pmf,
-    Vec2 u, ContinuationPdf&& continuation_pdf, uint64_t& rays) {
+    Vec2 u, ContinuationPdf&& continuation_pdf, uint64_t& rays, const ShadowRayInputs* shadow = nullptr) {
     return sample_direct_light_weighted(
         scene, rules, hit, v, spawn, ctx, bsdf, wo_local, beta, li, pmf, u,
         [&](const LightSample& ls, const Vec3& wi_local, float density) __attribute__((always_inline)) {
             if (ls.is_delta || rules.light_sampling != LightSampling::Mis) return 1.f;
             return mis_weight(rules.mis_heuristic, density, continuation_pdf(wi_local));
         },
-        rays);
+        rays, shadow);
 }
 
 /// Runs next-event estimation at a light-sample context with the strategy of `sampler` (one light per shadow

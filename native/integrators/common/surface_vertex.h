@@ -15,6 +15,7 @@
 // made on first use and shared by every ray leaving that side.
 #pragma once
 
+#include "bsdf/bsdf.h"
 #include "core/frame.h"
 #include "core/vec.h"
 #include "scene/ray_offset.h"
@@ -27,6 +28,7 @@ struct SurfaceVertex {
     Vec3 ng, ns;           // geometric and shading normals, on the side of w_c
     Frame frame;           // the shading frame (see above)
     bool backfacing;       // w_c arrives against the winding normal (glass: from inside)
+    bool shading_frame;    // the frame is built on ns (false: on ng, w_c being below ns)
 
     /// The vertex at `hit` with shading normal `shading_normal` (on the winding side), seen along w_c.
     static inline __attribute__((always_inline)) SurfaceVertex at(const SurfaceHit& hit, const Vec3& shading_normal,
@@ -40,8 +42,20 @@ struct SurfaceVertex {
             v.ng = -v.ng;
             v.ns = -v.ns;
         }
-        v.frame = Frame(dot(w_c, v.ns) > 0.f ? v.ns : v.ng);
+        v.shading_frame = dot(w_c, v.ns) > 0.f;
+        v.frame = Frame(v.shading_frame ? v.ns : v.ng);
         return v;
+    }
+
+    /// Bump shadowing (bsdf/bsdf.h) at this vertex: active where a Bump or Normal Map node bent the shading normal
+    /// (`bent`, ShadingPoint::bent) off the smooth one (`smooth`, SurfaceHit::ns: winding side) and the BSDF is
+    /// evaluated in the bent normal's frame.
+    BumpShadowing bump_shadowing(bool bent, const Vec3& smooth) const {
+        BumpShadowing b;
+        if (!bent || !shading_frame) return b;
+        b.smooth = frame.to_local(backfacing ? -smooth : smooth);
+        b.active = true;
+        return b;
     }
 };
 

@@ -63,12 +63,18 @@ public:
     }
     bool has_non_delta(const Vec3& w) const { return shading(w).bsdf().has_non_delta(); }
 
-    /// f(w_c, w_l) of the rule above (non-delta lobes).
+    /// f(w_c, w_l) of the rule above (non-delta lobes), with bump shadowing where a Bump or Normal Map node bent the
+    /// normal (bsdf/bsdf.h: it scales f only, so every sampling density here is unchanged).
     Color f(const Vec3& w_c, const Vec3& w_l) const {
         const ShadingPoint& sp = shading(w_c);
         const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
         const Vec3 l = v.frame.to_local(w_l);
         if (leaks(dot(w_l, v.ng), l.z)) return Color(0.f);
+        if (sp.bent) {
+            Bsdf shadowed = sp.bsdf();
+            shadowed.set_bump_shadowing(v.bump_shadowing(true, m_hit.ns));
+            return shadowed.f(v.frame.to_local(w_c), l);
+        }
         return sp.bsdf().f(v.frame.to_local(w_c), l);
     }
     /// The density with which camera-side BSDF sampling from w_c produces w_l (0 where it leaks).
@@ -152,7 +158,9 @@ public:
         out.bsdf = bs;
         out.delta = bs.is_delta();
         out.pdf = bs.pdf;
-        out.weight = bs.f * (std::fabs(bs.wi.z) / bs.pdf);
+        // A bent normal's bump shadowing scales f only (bsdf/bsdf.h): the sample's density stays, its f is f()'s.
+        const Color f_wi = sp.bent && !bs.is_delta() ? f(w_c, out.w) : bs.f;
+        out.weight = f_wi * (std::fabs(bs.wi.z) / bs.pdf);
         return out;
     }
     /// |w_l·ns| for the camera side's frame of w_c: the shading cosine a connection toward w_l carries at a camera

@@ -110,6 +110,8 @@ public:
             [&] { return film.noise_estimate(); });
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "light path"}; }
+    // Its BSDF is VertexBsdf's, which applies bump shadowing (tests/native/light_paths_test.cpp).
+    uint32_t honoured_features() const override { return k_feature_bump_shadowing; }
 
 private:
     LightSettings m_settings;

@@ -19,6 +19,11 @@ public:
         render_camera_progressive(scene, film, ctx, m_settings.pixel, tracer);
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
+    uint32_t honoured_features() const override {
+        // Not k_feature_motion_blur: no integrator renders motion yet (the add-on warns when a scene asks for it).
+        return k_feature_light_path | k_feature_transparent_shadows | k_feature_terminator_offset |
+               k_feature_bump_shadowing;
+    }
 
 private:
     PathSettings m_settings;

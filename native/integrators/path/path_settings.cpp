@@ -6,7 +6,8 @@
 namespace candela {
 
 const std::vector<ParamSpec>& PathSettings::specs() {
-    static const std::vector<ParamSpec> specs = {
+    static const std::vector<ParamSpec> specs = [] {
+        std::vector<ParamSpec> own = {
         max_bounces_spec(),
         rr_mode_spec(),
         rr_start_bounce_spec(),
@@ -21,9 +22,6 @@ const std::vector<ParamSpec>& PathSettings::specs() {
                      "on glossy surfaces)"},
                     {"BSDF", "BSDF", "Continue paths proportionally to the BSDF times the cosine (importance sampling)"}},
                    "How continuation directions are drawn (delta lobes always use the BSDF)", "Light Paths"),
-        float_param("clamp_indirect", "Clamp Indirect", 0.0, 0.0, 1e9,
-                    "Clamp the brightest component of indirect light contributions to this value; 0 = off. Biased: it "
-                    "removes fireflies by removing energy", "Light Paths", 100.0),
         enum_param("light_sampling", "Light Sampling", "MIS",
                    {{"BSDF_ONLY", "BSDF Only",
                      "Teaching option: direct light only where continuation rays hit emitters (point, spot and sun "
@@ -37,7 +35,10 @@ const std::vector<ParamSpec>& PathSettings::specs() {
         ward_threshold_spec(),
         light_pdf_spec(),
         light_samples_spec(),
-    };
+        };
+        for (ParamSpec& p : LightPathSettings::specs()) own.push_back(std::move(p));
+        return own;
+    }();
     return specs;
 }
 
@@ -45,7 +46,8 @@ PathSettings PathSettings::from_params(const Params& params) {
     const ParamReader read(params, specs());
     PathSettings s;
     s.pixel = PixelSampling::from_params(params);
-    s.max_bounces = read.get_int("max_bounces");
+    s.paths = LightPathSettings::read(read);
+    s.max_bounces = s.paths.max_bounces;
     s.rr_start_bounce = read.get_int("rr_start_bounce");
     s.rr_mode = parse_rr_mode(read.get_enum("rr_mode"));
     const std::string hs = read.get_enum("hemisphere_sampling");
@@ -57,7 +59,6 @@ PathSettings PathSettings::from_params(const Params& params) {
     s.direct.mis_heuristic = read.get_enum("mis_heuristic") == "BALANCE" ? MisHeuristic::Balance : MisHeuristic::Power;
     read_light_sampling_specs(read, &s.direct, &s.light_selection);
     s.branching_factor = read.get_int("branching_factor");
-    s.clamp_indirect = read.get_float("clamp_indirect");
     return s;
 }
 

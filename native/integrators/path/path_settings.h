@@ -7,6 +7,7 @@
 #include "core/param_spec.h"
 #include "core/params.h"
 #include "integrators/common/direct_light.h"
+#include "integrators/common/light_paths.h"
 #include "integrators/common/roulette.h"
 #include "integrators/pixel_sampling.h"
 
@@ -17,14 +18,14 @@ enum class HemisphereSampling { Uniform, Cosine, Bsdf };
 
 struct PathSettings {
     PixelSampling pixel;
-    int max_bounces = 12;           // 0 = direct lighting only
+    LightPathSettings paths;        // bounce budget (max_bounces: 0 = direct lighting only), clamps, caustics
+    int max_bounces = 12;           // = paths.max_bounces
     int rr_start_bounce = 3;        // Russian roulette from this bounce on
     RouletteMode rr_mode = RouletteMode::Throughput;
     HemisphereSampling hemisphere_sampling = HemisphereSampling::Bsdf;
     DirectLightRules direct;        // light sampling, MIS heuristic, light pdf, light samples, Ward's threshold
     std::string light_selection = "TREE";  // registry name of the light-selection strategy
     int branching_factor = 1;       // continuation rays at the first surface (stochastic ray tracing)
-    float clamp_indirect = 0.f;     // > 0: clamp indirect contributions' max component (biased); 0 = off
 
     static PathSettings from_params(const Params& params);
     /// The PATH integrator's own settings (besides common_param_specs()), as the add-on draws them.

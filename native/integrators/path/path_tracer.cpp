@@ -9,6 +9,7 @@
 #include "integrators/ray_types.h"
 #include "integrators/shadow_ray.h"
 #include "sampling/warp.h"
+#include "bsdf/bsdf_filters.h"
 #include "scene/ray_offset.h"
 
 namespace candela {
@@ -44,9 +45,13 @@ float continuation_pdf(HemisphereSampling mode, const Bsdf& bsdf, const Vec3& wo
     return both_sides ? 0.5f * p : p;
 }
 
-/// Clamps an indirect contribution's brightest component to `clamp` (0 = off).
-inline __attribute__((always_inline)) void clamp_contribution(Color& c, float clamp) {
-    if (clamp > 0.f && max_component(c) > clamp) c *= clamp / max_component(c);
+/// The largest α of the BSDF's dielectric lobes (Film > Transparent Glass compares it with its roughness threshold).
+float transmission_alpha(const Bsdf& b) {
+    float a = 0.f;
+    for (int i = 0; i < b.size(); ++i)
+        if (const auto* g = std::get_if<MicrofacetDielectric>(&b[i].lobe))
+            a = std::fmax(a, std::fmax(g->distribution.alpha_x, g->distribution.alpha_y));
+    return a;
 }
 
 }  // namespace
@@ -73,46 +78,56 @@ Color PathTracer::Li(const Ray& camera_ray, const TracedHit& first, Sampler& sam
 }
 
 // Emission found by a ray: MIS against light sampling (weight 1 after a camera ray or a delta scatter; 0 when
-// only light sampling estimates direct light). Indirect light (found after at least one diffuse/glossy bounce
-// from the first surface) may be clamped.
-inline __attribute__((always_inline)) void PathTracer::add_emission(const PathState& st, int bounce, const Color& Le,
+// only light sampling estimates direct light), then the clamp of its kind (common/light_paths.h).
+inline __attribute__((always_inline)) void PathTracer::add_emission(const PathState& st, const Color& Le,
                                                                     float light_pdf, Color& L) const {
     Color c = st.beta * Le * emission_weight(m_settings.direct, st.origin, light_pdf);
-    if (bounce >= 2) clamp_contribution(c, m_settings.clamp_indirect);
+    clamp_contribution(c, m_settings.paths, st.lp.depth.bounce - 1);
     L += c;
 }
 
-// Area lights are not occluders: any emitting side before the surface adds its radiance.
-inline __attribute__((always_inline)) void PathTracer::add_area_light_emission(const Ray& ray, float t_surface, int bounce,
+// Area lights are not occluders: any emitting side before the surface adds its radiance. The camera's visibility
+// of a light holds for the camera ray and its continuations through transparent surfaces.
+inline __attribute__((always_inline)) void PathTracer::add_area_light_emission(const Ray& ray, float t_surface,
                                                                                const PathState& st, Color& L) const {
     const LightSet& lights = m_scene.lights();
     if (lights.area_lights().empty()) return;
     uint32_t li;
     float tl;
-    if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, t_surface, &li, &tl, /*camera_ray=*/bounce == 0)) {
+    if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, t_surface, &li, &tl, /*camera_ray=*/ray.type == k_ray_camera)) {
         const auto& area = std::get<AreaLight>(lights[li]);
-        add_emission(st, bounce, area.radiance, nee_density(m_settings.direct, m_light_sampler, lights, st.origin, li, ray.d, tl), L);
+        add_emission(st, area.radiance,
+                     nee_density(m_settings.direct, m_light_sampler, lights, st.origin, li, ray.d, st.mis_t + tl), L);
     }
 }
 
-inline __attribute__((always_inline)) void PathTracer::add_world_emission(const Ray& ray, int bounce, const PathState& st,
-                                                                          Color& L, float* alpha) const {
+inline __attribute__((always_inline)) void PathTracer::add_world_emission(const Ray& ray, const PathState& st, Color& L,
+                                                                          float* alpha) const {
     const LightSet& lights = m_scene.lights();
-    if (bounce == 0 && m_settings.pixel.film_transparent) {
-        *alpha = 0.f;
+    if (st.lp.transparent_background && m_settings.pixel.film_transparent) {
+        // The background seen through nothing but transparent surfaces (and, with Transparent Glass, smooth
+        // refractions) is transparent: alpha loses the throughput's average, as Cycles' transparent background does.
+        *alpha = st.lp.depth.bounce == 0 && st.lp.depth.transparent == 0
+                     ? 0.f
+                     : std::fmax(0.f, *alpha - (st.beta.x + st.beta.y + st.beta.z) / 3.f);
     } else if (const WorldLight* world = lights.world()) {
         const uint32_t index = uint32_t(lights.world_light());
-        add_emission(st, bounce, world->Le(ray.d),
-                     nee_density(m_settings.direct, m_light_sampler, lights, st.origin, index, ray.d, k_inf), L);
+        const Color Le = m_scene.world_reads_light_path() ? m_scene.world_radiance(ray.d, st.lp.info(k_inf))
+                                                          : world->Le(ray.d);
+        add_emission(st, Le, nee_density(m_settings.direct, m_light_sampler, lights, st.origin, index, ray.d, k_inf), L);
+    } else if (m_scene.world_reads_light_path()) {
+        add_emission(st, m_scene.world_radiance(ray.d, st.lp.info(k_inf)), 0.f, L);  // constant but path-dependent
     } else if (!is_black(lights.background())) {
-        add_emission(st, bounce, lights.background(), 0.f, L);  // a constant world: never light-sampled, weight 1
+        add_emission(st, lights.background(), 0.f, L);  // a constant world: never light-sampled, weight 1
     }
 }
 
 template <class ConcreteSampler>
-void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampler, PathStats& stats, Color& L,
+void PathTracer::trace(Ray ray, PathState st, int vertex, ConcreteSampler& sampler, PathStats& stats, Color& L,
                        float* alpha, const TracedHit* first) const {
-    for (;; ++bounce) {
+    const LightPathSettings& paths = m_settings.paths;
+    const bool light_path = m_scene.reads_light_path();
+    for (;; ++vertex) {
         SurfaceHit hit;
         ++stats.rays;
         bool found;
@@ -123,41 +138,65 @@ void PathTracer::trace(Ray ray, PathState st, int bounce, ConcreteSampler& sampl
         } else {
             found = m_scene.intersect(ray, &hit, st.from);
         }
-        add_area_light_emission(ray, found ? hit.t : ray.tmax, bounce, st, L);
+        add_area_light_emission(ray, found ? hit.t : ray.tmax, st, L);
         if (!found) {
-            add_world_emission(ray, bounce, st, L, alpha);
+            add_world_emission(ray, st, L, alpha);
             return;
         }
-        if (bounce == 0 && !camera_hit(m_scene, ray, hit, st.aov, alpha)) return;  // data passes, holdout
+        if (vertex == 0 && !camera_hit(m_scene, ray, hit, st.aov, alpha)) return;  // data passes, holdout
 
-        const ShadingPoint sp = m_scene.shade(hit, -ray.d);  // the material here: textures, normal map
+        // The material here (textures, normal map), shaded for this ray's Light Path inputs where a shader reads them.
+        LightPathInfo info;
+        if (light_path) info = st.lp.info(hit.t * length(ray.d));
+        const ShadingPoint sp = m_scene.shade(hit, -ray.d, light_path ? &info : nullptr);
         if (!is_black(sp.emission)) {
             const float light_pdf = hit.light >= 0 ? nee_density(m_settings.direct, m_light_sampler, m_scene.lights(),
-                                                                  st.origin, uint32_t(hit.light), ray.d, hit.t)
+                                                                  st.origin, uint32_t(hit.light), ray.d, st.mis_t + hit.t)
                                                    : 0.f;
-            add_emission(st, bounce, sp.emission, light_pdf, L);
+            add_emission(st, sp.emission, light_pdf, L);
         }
-        if (bounce > m_settings.max_bounces) return;
-        if (!scatter(hit, sp, ray, st, bounce, sampler, stats, L, alpha)) return;
+        if (!may_scatter(paths, st.lp.depth)) {
+            // Out of bounces: the path goes on only through Transparent closures, to the next emitter it finds.
+            if (!may_pass_transparent(paths, st.lp.depth) ||
+                !(m_scene.material_flags(hit.material) & k_bsdf_transparent))
+                return;
+            const Color through = transparency(sp.bsdf());
+            if (is_black(through)) return;
+            st.beta *= through;
+            ++st.lp.depth.transparent;
+            st.mis_t += hit.t;
+            st.from = hit.primitive;
+            ray.o = offset_ray_origin(hit.p, dot(ray.d, hit.ng) > 0.f ? hit.ng : -hit.ng);
+            ray.tmin = 0.f;
+            ray.tmax = k_inf;
+            continue;
+        }
+        if (!scatter(hit, sp, ray, st, vertex, sampler, stats, L, alpha)) return;
     }
 }
 
 template <class ConcreteSampler>
 inline __attribute__((always_inline)) bool PathTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray,
-                                                               PathState& st, int bounce, ConcreteSampler& sampler,
+                                                               PathState& st, int vertex, ConcreteSampler& sampler,
                                                                PathStats& stats, Color& L, float* alpha) const {
     const PathSettings& cfg = m_settings;
     const LightSet& lights = m_scene.lights();
     const Vec3 wo = -ray.d;
     const SurfaceVertex v = SurfaceVertex::at(hit, sp.ns, wo);
     const Vec3 wo_local = v.frame.to_local(wo);
-    const Bsdf& bsdf = sp.bsdf();
+    // The BSDF, with the Light Paths rules (Filter Glossy, Caustics) and bump shadowing where they apply.
+    BsdfSlot slot;
+    const Bsdf& bsdf = (sp.bent || modifies_bsdfs(cfg.paths))
+                           ? vertex_scattering_bsdf(sp.bsdf(), cfg.paths, st.lp, wo_local.z,
+                                                    v.bump_shadowing(sp.bent, hit.ns), slot)
+                           : sp.bsdf();
     SpawnPoints spawn(hit.p, v.ng);
+    const int bounce = st.lp.depth.bounce;  // scatterings so far (transparent pass-throughs excluded)
 
     // Named sample dimensions: each is the same sequence dimension for every sample of every pixel, so
     // skipping one never shifts another. draw_bounce draws the values this vertex needs (the Sobol sampler
     // draws all of them in one SIMD batch, which costs less than drawing two or three one at a time).
-    const int dim = bounce + st.dim_offset;
+    const int dim = vertex + st.dim_offset;
     const bool nee_here = !lights.empty() && bsdf.has_non_delta();
     const bool roulette_here = cfg.rr_mode != RouletteMode::Off && bounce + 1 >= cfg.rr_start_bounce;
     // The discrete choice: which lobe, and for a dielectric (the one lobe that uses it) or a two-sided
@@ -185,15 +224,16 @@ inline __attribute__((always_inline)) bool PathTracer::scatter(const SurfaceHit&
     // only) continuation direction is drawn here, before next-event estimation, although it is used after:
     // nothing in between depends on it, and its latency chain (a division, a polynomial, a square root for a
     // diffuse lobe) then overlaps the light sample instead of stalling the continuation.
-    const int branches = bounce == 0 ? cfg.branching_factor : 1;
+    const int branches = vertex == 0 ? cfg.branching_factor : 1;
     const BsdfSample first_continuation =
         sample_continuation(cfg.hemisphere_sampling, bsdf, wo_local, light_sample_u(u_bsdf, 0u, uint32_t(branches)),
                             light_select_u(u_lobe, 0u, uint32_t(branches)));
 
-    // Next-event estimation (common/direct_light.h).
+    // Next-event estimation (common/direct_light.h); shadow rays pass Transparent surfaces.
     const LightSampleContext ctx{hit.p, v.ns};
     int ward_tested = 0;
     if (nee_here) {
+        const ShadowRayInputs shadow{st.lp.shadow_info(), cfg.paths.transparent_bounces - st.lp.depth.transparent};
         ward_tested = next_event_estimation(
             cfg.direct, m_light_sampler, lights, ctx, u_select, u_light,
             [&](uint32_t li, float pmf, Vec2 u_li) __attribute__((always_inline)) {
@@ -202,8 +242,8 @@ inline __attribute__((always_inline)) bool PathTracer::scatter(const SurfaceHit&
                     [&](const Vec3& wi_local) __attribute__((always_inline)) {
                         return continuation_pdf(cfg.hemisphere_sampling, bsdf, wo_local, wi_local);
                     },
-                    stats.rays);
-                if (bounce >= 1) clamp_contribution(d.contribution, cfg.clamp_indirect);
+                    stats.rays, &shadow);
+                clamp_contribution(d.contribution, cfg.paths, bounce);
                 L += d.contribution;
                 return d.visible;
             });
@@ -220,14 +260,29 @@ inline __attribute__((always_inline)) bool PathTracer::scatter(const SurfaceHit&
         const float cos_g = dot(wi, v.ng);
         if (leaks(cos_g, bs.wi.z)) return false;
         next->beta = st.beta * bs.f * (std::fabs(bs.wi.z) / (bs.pdf * float(branches)));
-        next->origin.bsdf_pdf = bs.pdf;
-        next->origin.specular = bs.is_delta();
-        // Radiance mode scales β by 1/η² at each refraction; undo it for the roulette only
-        // (docs/robustness-notes.md §5).
-        next->eta_scale = st.eta_scale * (bs.is_transmission() ? bs.eta * bs.eta : 1.f);
+        next->lp = st.lp;
+        if (bs.is_transparent()) {
+            // The same ray carried on: MIS still weighs what it finds against the vertex before (at the summed
+            // distance), and nothing else of the path changes.
+            next->origin = st.origin;
+            next->mis_t = st.mis_t + hit.t;
+            next->eta_scale = st.eta_scale;
+            after_scatter(next->lp, bs);
+        } else {
+            next->origin.bsdf_pdf = bs.pdf;
+            next->origin.specular = bs.is_delta();
+            next->origin.point = ctx;
+            next->origin.ward_tested = ward_tested;
+            next->mis_t = 0.f;
+            // Radiance mode scales β by 1/η² at each refraction; undo it for the roulette only
+            // (docs/robustness-notes.md §5).
+            next->eta_scale = st.eta_scale * (bs.is_transmission() ? bs.eta * bs.eta : 1.f);
+            const bool see_through = cfg.pixel.transparent_glass && bs.is_transmission() &&
+                                     !(bs.flags & k_bsdf_diffuse) &&
+                                     transmission_alpha(bsdf) <= cfg.pixel.transparent_roughness;
+            after_scatter(next->lp, bs, see_through);
+        }
         next->from = hit.primitive;
-        next->origin.point = ctx;
-        next->origin.ward_tested = ward_tested;
         // Branches draw from their own sample dimensions (else they would repeat each other).
         next->dim_offset = st.dim_offset + j * (cfg.max_bounces + 2);
         if (roulette_here && !arrival_roulette) {
@@ -244,7 +299,7 @@ inline __attribute__((always_inline)) bool PathTracer::scatter(const SurfaceHit&
     for (int j = 0; j < branches; ++j) {
         Ray next_ray;
         PathState next;
-        if (continuation(j, &next_ray, &next)) trace(next_ray, next, bounce + 1, sampler, stats, L, alpha);
+        if (continuation(j, &next_ray, &next)) trace(next_ray, next, vertex + 1, sampler, stats, L, alpha);
     }
     return false;
 }

@@ -14,7 +14,11 @@
 // min(1, √(max throughput·Πη²)), decided on arrival at vertex v — v = 0 the first — when v + 1 >= rr_start_bounce,
 // before its shadow rays; Cycles decides at vertices whose bounce count exceeds min_light_bounces = m, so
 // rr_start_bounce = m + 2 reproduces it), each of which keeps
-// the estimator unbiased for the truncated sum. clamp_indirect (off by default) clamps indirect contributions: biased, fewer fireflies.
+// the estimator unbiased for the truncated sum. The Light Paths settings (common/light_paths.h, Cycles 3.4's
+// semantics) add per-type bounce limits, Clamp Direct and Indirect, Filter Glossy and the Caustics switches, all off
+// by default. A Transparent BSDF's pass-through is not a bounce: the ray carries on (its MIS origin stays the vertex
+// before the transparent surfaces, at the summed distance), and shadow rays pass Transparent surfaces too (Cycles'
+// transparent shadows), so both estimators of the light behind see the same transparency.
 #pragma once
 
 #include "film/aov_film.h"
@@ -44,28 +48,32 @@ public:
     struct PathState {
         Color beta{1.f};         // throughput
         EmissionOrigin origin;   // the scattering that produced the ray, for MIS at an emitter it finds
+        float mis_t = 0.f;       // distance from that scattering to the ray's origin (transparent surfaces between)
         float eta_scale = 1.f;   // Π η² over refractions (roulette only)
         PrimitiveRef from;       // the triangle the ray leaves (skipped by the intersection)
-        int dim_offset = 0;      // added to the bounce for sample dimensions (branches use their own)
+        int dim_offset = 0;      // added to the vertex index for sample dimensions (branches use their own)
         AovSample* aov = nullptr;  // camera ray only: where its first hit's data passes go
+        LightPathState lp;       // bounce counts, the ray's type for the Light Path node, Filter Glossy's pdf
     };
 
 private:
     /// Templated on the concrete sampler (Li dispatches once per path), so every draw inlines.
     /// `first`, if given, is the closest hit of `ray` (traced ahead), used instead of intersecting it again.
+    /// `vertex` counts the surfaces the path has reached (0: the camera ray's), transparent ones included: it
+    /// names the sample dimensions. The bounce counts live in the state (PathState::lp).
     template <class ConcreteSampler>
-    void trace(Ray ray, PathState state, int bounce, ConcreteSampler& sampler, PathStats& stats, Color& L,
+    void trace(Ray ray, PathState state, int vertex, ConcreteSampler& sampler, PathStats& stats, Color& L,
                float* alpha, const TracedHit* first = nullptr) const;
     /// The vertex at `hit`: roulette, next-event estimation and the continuation. Returns true with `ray` and
     /// `state` set to the continuation's; false when the path ends here (or went on in branches).
     template <class ConcreteSampler>
-    bool scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, PathState& state, int bounce,
+    bool scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, PathState& state, int vertex,
                  ConcreteSampler& sampler, PathStats& stats, Color& L, float* alpha) const;
-    /// Emission Le found by the path's ray (weighted against light sampling; indirect light may be clamped).
-    void add_emission(const PathState& state, int bounce, const Color& Le, float light_pdf, Color& L) const;
+    /// Emission Le found by the path's ray (weighted against light sampling; may be clamped).
+    void add_emission(const PathState& state, const Color& Le, float light_pdf, Color& L) const;
     /// The light the ray finds before the surface at t_surface (area lights) or beyond it when it escapes.
-    void add_area_light_emission(const Ray& ray, float t_surface, int bounce, const PathState& state, Color& L) const;
-    void add_world_emission(const Ray& ray, int bounce, const PathState& state, Color& L, float* alpha) const;
+    void add_area_light_emission(const Ray& ray, float t_surface, const PathState& state, Color& L) const;
+    void add_world_emission(const Ray& ray, const PathState& state, Color& L, float* alpha) const;
 
     const Scene& m_scene;
     const PathSettings& m_settings;
