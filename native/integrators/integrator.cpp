@@ -1,6 +1,7 @@
 #include "integrators/integrator.h"
 
 #include "core/error.h"
+#include "integrators/auto/auto_integrator.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/bdpt_settings.h"
 #include "integrators/generators/generator_integrator.h"
@@ -36,6 +37,10 @@ const std::vector<IntegratorEntry>& integrator_registry() {
          "The course's receiver-gathering generator: indirect light from a ray shot from the visible point, its hit "
          "connected to a point on a light (direct light by next-event estimation, mirrors and glass by ray tracing)",
          &make_receiver_gathering_integrator, &GeneratorSettings::specs},
+        {"AUTO", "Automatic",
+         "Analyses the scene and renders with the integrator its effects call for (the choice and its reason in the "
+         "status line and the log; the chosen integrator's own settings at their defaults)",
+         &make_auto_integrator, &auto_param_specs},
     };
     return registry;
 }

@@ -284,6 +284,7 @@ PYBIND11_MODULE(_native, m) {
                  d["stage"] = p.stage.name;
                  d["stage_done"] = p.stage.done;
                  d["stage_total"] = p.stage.total;
+                 d["method"] = p.method;
                  d["fraction"] = p.fraction;
                  d["elapsed_s"] = p.elapsed_s;
                  d["relative_error"] = p.relative_error >= 0.0 ? py::object(py::float_(p.relative_error)) : py::none();
