@@ -63,8 +63,10 @@ def status_line(integrator, progress):
     """"Path | Sample 37/256 | Elapsed 00:12 | Remaining 00:41", the phase while building, or the integrator's
     current stage with its own progress ("Photon | Tracing photons 3.2 M / 10 M | Elapsed 00:04", or in percent:
     "Irradiance Cache | Irradiance cache 41 % | 1234 records | Elapsed 00:04"); the integrator's note (its record
-    count) stays in the line while it renders."""
+    count) stays in the line while it renders. When the native side names the method itself (AUTO's choice and
+    reason, "Auto: BDPT — caustic paths ..."), that replaces the name."""
     name = integrator.replace("_", " ").title() if integrator != "BDPT" else "BDPT"
+    name = progress.get("method") or name
     elapsed = float(progress.get("elapsed_s", 0.0))
     phase = progress.get("phase", "rendering")
     if phase == "building":

@@ -1,6 +1,7 @@
 #include "integrators/integrator.h"
 
 #include "core/error.h"
+#include "integrators/auto/auto_integrator.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/bdpt_settings.h"
 #include "integrators/generators/generator_integrator.h"
@@ -68,6 +69,10 @@ const std::vector<IntegratorEntry>& integrator_registry() {
          "Stochastic progressive photon mapping (Hachisuka & Jensen 2009): camera visible points and a photon pass "
          "per iteration with shrinking radii; consistent, converges to the path tracer's image",
          &make_sppm_integrator, &SppmSettings::specs, &sppm_integrator_memory},
+        {"AUTO", "Automatic",
+         "Analyses the scene and renders with the integrator its effects call for (the choice and its reason in the "
+         "status line and the log; the chosen integrator's own settings at their defaults)",
+         &make_auto_integrator, &auto_param_specs},
     };
     return registry;
 }

@@ -57,6 +57,24 @@ private:
     std::string m_note;
 };
 
+/// What the status line names as the method when it is not the integrator the user chose: AUTO's choice and its
+/// one-line reason ("Auto: BDPT — caustic paths from small lights"). Empty: the chosen integrator's name.
+class MethodNote {
+public:
+    void set(std::string text) {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        m_text = std::move(text);
+    }
+    std::string get() const {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        return m_text;
+    }
+
+private:
+    mutable std::mutex m_mutex;
+    std::string m_text;
+};
+
 struct RenderCounters {
     // Progress of the progressive render in the integrator's own unit (samples per pixel, light paths per
     // pixel, iterations, mutations per pixel: Integrator::budget()).
@@ -68,6 +86,7 @@ struct RenderCounters {
     std::atomic<double> relative_error{-1.0};  // estimated relative RMSE of the image; < 0 = not known (yet)
     std::atomic<int> stop_reason{int(StopReason::Running)};
     StageProgress stage;
+    MethodNote method;
 };
 
 inline const char* stop_reason_name(StopReason r) {

@@ -356,6 +356,7 @@ PYBIND11_MODULE(_native, m) {
                  d["stage_total"] = p.stage.total;
                  d["stage_percent"] = p.stage.percent;  // show the stage's progress as a percentage
                  d["note"] = p.stage.note;               // the integrator's status beside it ("1,234 records")
+                 d["method"] = p.method;
                  d["fraction"] = p.fraction;
                  d["elapsed_s"] = p.elapsed_s;
                  d["relative_error"] = p.relative_error >= 0.0 ? py::object(py::float_(p.relative_error)) : py::none();

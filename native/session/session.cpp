@@ -159,6 +159,7 @@ SessionProgress Session::progress() const {
     p.work_total = m_counters.work_total;
     p.unit = m_unit;
     p.stage = m_counters.stage.snapshot();
+    p.method = m_counters.method.get();
     p.fraction = p.work_total > 0 ? double(p.work_done) / double(p.work_total) : 0.0;
     p.relative_error = m_counters.relative_error;
     p.stop_reason = StopReason(m_counters.stop_reason.load());

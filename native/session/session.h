@@ -31,6 +31,7 @@ struct SessionProgress {
     int64_t work_done = 0, work_total = 0;  // in the integrator's unit (WorkBudget)
     std::string unit = "sample";
     StageProgress::Snapshot stage;  // a named stage with its own progress (a pre-pass), or none
+    std::string method;             // the method the status names when not the chosen integrator (AUTO's choice)
     double fraction = 0.0;
     double elapsed_s = 0.0;  // since start()
     double relative_error = -1.0;  // estimated relative RMSE of the image (< 0: not known yet)

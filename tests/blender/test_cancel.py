@@ -98,6 +98,13 @@ def test_status_line_format():
     assert line == "Path | Sample 37/256 | Elapsed 00:12 | Remaining 00:36"
 
 
+def test_status_line_names_autos_choice_and_reason():
+    line = render_loop.status_line("AUTO", {"phase": "rendering", "samples_done": 3, "samples_total": 4,
+                                            "fraction": 0.75, "elapsed_s": 3.0,
+                                            "method": "Auto: BDPT \u2014 caustic paths"})
+    assert line == "Auto: BDPT \u2014 caustic paths | Sample 3/4 | Elapsed 00:03 | Remaining 00:01"
+
+
 def test_status_line_shows_noise_and_why_the_render_stopped():
     progress = {"phase": "done", "samples_done": 48, "samples_total": 1024, "fraction": 48 / 1024,
                 "elapsed_s": 3.0, "relative_error": 0.0198, "stop_reason": "noise threshold"}

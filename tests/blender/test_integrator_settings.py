@@ -67,6 +67,19 @@ def test_stable_numbers_are_reserved_for_every_planned_integrator():
     assert numbers["PATH"] == 0 and numbers["BDPT"] == 1 and numbers["MLT"] == 2   # as saved files have them
 
 
+def test_auto_is_in_the_integrator_menu_with_its_stable_number_and_only_common_keys():
+    _, params, properties, schema, _ = _modules()
+    assert "AUTO" in [name for name, _, _ in schema.integrators()]
+    rna = bpy.types.Scene.bl_rna.properties["candela"].fixed_type.properties
+    items = {item.identifier: item.value for item in rna["integrator"].enum_items}
+    assert items["AUTO"] == properties.INTEGRATOR_NUMBERS["AUTO"]
+    assert schema.integrator_params()["AUTO"] == []   # the chosen integrator's own settings stay at their defaults
+    scene = tiny_scene(width=8, height=6, samples=1)
+    scene.candela.integrator = "AUTO"
+    sent = params.to_native_params(scene, scene.camera.data)
+    assert sent["integrator"] == "AUTO"
+
+
 def test_only_the_chosen_integrators_keys_are_sent():
     _, params, _, schema, _ = _modules()
     scene = tiny_scene(width=8, height=6, samples=1)

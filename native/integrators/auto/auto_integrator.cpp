@@ -1,0 +1,62 @@
+#include "integrators/auto/auto_integrator.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "integrators/auto/auto_policy.h"
+#include "integrators/auto/scene_features.h"
+
+namespace candela {
+
+namespace {
+
+bool in_registry(const std::string& name) {
+    for (const auto& e : integrator_registry())
+        if (name == e.name && name != "AUTO") return true;
+    return false;
+}
+
+class AutoIntegrator final : public Integrator {
+public:
+    explicit AutoIntegrator(const Params& params)
+        : m_params(params),
+          // Built from the caller's params so their common keys count as read (Session reports unread ones), and
+          // for the budget before the scene exists: PATH's, in samples; render() replaces it by the choice's.
+          m_probe(find_integrator("PATH").create(params)) {}
+
+    void render(const Scene& scene, Film& film, RenderContext& ctx) override {
+        ctx.counters.stage.begin("Analysing scene", 0);
+        const auto t0 = std::chrono::steady_clock::now();
+        const SceneFeatures features = analyse_scene(scene);
+        const AutoChoice choice = choose_integrator(features, &in_registry);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        ctx.counters.stage.end();
+        ctx.log(features.summary());
+        char took[64];
+        std::snprintf(took, sizeof took, " (rule %s; analysis %.1f ms)", choice.rule.c_str(), ms);
+        ctx.log("Auto: chose " + choice.integrator + " \xe2\x80\x94 " + choice.reason + took);
+        ctx.counters.method.set("Auto: " + choice.integrator + " \xe2\x80\x94 " + choice.reason);
+        std::unique_ptr<Integrator> chosen = find_integrator(choice.integrator).create(m_params);
+        ctx.counters.work_total = chosen->budget().total;
+        chosen->render(scene, film, ctx);
+    }
+
+    WorkBudget budget() const override { return m_probe->budget(); }
+
+private:
+    Params m_params;
+    std::unique_ptr<Integrator> m_probe;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_auto_integrator(const Params& params) {
+    return std::make_unique<AutoIntegrator>(params);
+}
+
+const std::vector<ParamSpec>& auto_param_specs() {
+    static const std::vector<ParamSpec> specs;
+    return specs;
+}
+
+}  // namespace candela

@@ -1,0 +1,34 @@
+// AUTO's policy: which integrator a scene's static features call for, as one ordered table of rules (predicate →
+// integrator + one-line reason) in auto_policy.cpp; the first rule whose predicate holds and whose integrator the
+// build has wins, so the table names integrators that do not exist yet (SPPM, IRRADIANCE_CACHE) and keeps working
+// when they arrive. Each rule's evidence is in docs/auto.md.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "integrators/auto/scene_features.h"
+
+namespace candela {
+
+struct AutoRule {
+    const char* name;        // the rule's id, as docs/auto.md's table lists it
+    const char* integrator;  // a registry name
+    bool (*applies)(const SceneFeatures&);
+    std::string (*reason)(const SceneFeatures&);  // the one-line reason, with the figures that decided
+};
+
+/// The table, first match wins; its last rule always applies (PATH).
+const std::vector<AutoRule>& auto_rules();
+
+struct AutoChoice {
+    std::string integrator;
+    std::string rule;
+    std::string reason;
+};
+
+/// The first rule that applies to `f` and whose integrator `available(name)` says exists.
+AutoChoice choose_integrator(const SceneFeatures& f, const std::function<bool(const std::string&)>& available);
+
+}  // namespace candela

@@ -1,0 +1,153 @@
+// AUTO (docs/auto.md): the policy's choice and reason on the shared reference scenes, rules of missing integrators
+// skipped; the choice logged and named in the status; AUTO's image the chosen integrator's, bit for bit.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "film/film.h"
+#include "integrators/auto/auto_policy.h"
+#include "integrators/auto/scene_features.h"
+#include "integrators/integrator.h"
+#include "reference_scenes.h"
+#include "scene/scene.h"
+#include "test_helpers.h"
+
+namespace candela::test {
+namespace {
+
+SceneFeatures features_of(const SceneArrays& a, const Params& p = basic_params(8, 8, 1, 2)) {
+    const Scene scene(a, p, nullptr);
+    return analyse_scene(scene);
+}
+
+AutoChoice choice_of(const SceneFeatures& f) {
+    return choose_integrator(f, [](const std::string& name) {
+        for (const auto& e : integrator_registry())
+            if (name == e.name) return true;
+        return false;
+    });
+}
+
+// A 4 × 4 diffuse floor at y = −1 and, with `mirror`, a 2 × 2 mirror standing on it.
+MeshBuilder floor_and_mirror(bool mirror) {
+    MeshBuilder b;
+    const uint32_t floor = b.add_material(Color(0.5f), Color(0.f));
+    b.add_instance(add_parallelogram(b, Vec3(-2.f, -1.f, -6.f), Vec3(0.f, 0.f, 4.f), Vec3(4.f, 0.f, 0.f), floor));
+    if (mirror) {
+        const uint32_t m = b.add_material(Color(0.f), Color(0.f));
+        b.add_closure(m, "GLOSSY", {{"color_r", 0.9f}, {"color_g", 0.9f}, {"color_b", 0.9f}, {"roughness", 0.f}});
+        b.add_instance(add_parallelogram(b, Vec3(-1.f, -1.f, -5.f), Vec3(2.f, 0.f, 0.f), Vec3(0.f, 2.f, 0.f), m));
+    }
+    return b;
+}
+
+// The policy on every shared reference scene (tests/native/reference_scenes.h).
+TEST(AutoPolicy, ChoiceAndReasonOnTheReferenceScenes) {
+    struct Case {
+        const char* scene;
+        SceneArrays arrays;
+        Params params;
+        const char* integrator;
+        const char* rule;
+    };
+    std::vector<float> veach_camera;
+    SceneArrays veach = veach_scene(&veach_camera);
+    std::vector<Case> cases;
+    cases.push_back({"cornell_box", cornell_box(), basic_params(8, 8, 1, 2), "PATH", "default"});
+    cases.push_back({"glass_caustic", glass_caustic(), basic_params(8, 8, 1, 2), "BDPT", "caustics_bdpt"});
+    cases.push_back({"lit_room point+disk, specular", lit_room(1 | 32, true), basic_params(8, 8, 1, 2), "BDPT",
+                     "caustics_bdpt"});
+    // Its 0.5 × 0.4 rectangle is 0.2 m², under 1 % of the room's πR²: small.
+    cases.push_back({"lit_room rectangle+world, specular", lit_room(64 | 256, true), basic_params(8, 8, 1, 2), "BDPT",
+                     "caustics_bdpt"});
+    MeshBuilder large = floor_and_mirror(true);
+    large.add_area_light(Vec3(0.f, 2.f, -4.f), Vec3(3.f, 0.f, 0.f), Vec3(0.f, 0.f, 3.f), Vec3(0.f, -1.f, 0.f),
+                         Color(100.f), false);
+    cases.push_back({"mirror under a 9 m² light", large.arrays(), basic_params(8, 8, 1, 2), "PATH",
+                     "specular_large_lights"});
+    cases.push_back({"lit_room all lights, diffuse", lit_room(511, false), basic_params(8, 8, 1, 2), "PATH", "default"});
+    cases.push_back({"smooth_lowpoly_sphere", smooth_lowpoly_sphere(), basic_params(8, 8, 1, 2), "PATH", "default"});
+    cases.push_back({"veach_scene", std::move(veach), veach_params(8, 8), "PATH", "default"});
+    cases.push_back({"facing_plates", facing_plates(), facing_plates_params(8, 8, 1), "PATH", "default"});
+    for (const Case& c : cases) {
+        const AutoChoice choice = choice_of(features_of(c.arrays, c.params));
+        EXPECT_EQ(choice.integrator, c.integrator) << c.scene << ": " << choice.reason;
+        EXPECT_EQ(choice.rule, c.rule) << c.scene << ": " << choice.reason;
+        EXPECT_FALSE(choice.reason.empty()) << c.scene;
+    }
+    // The glass caustic's reason says why, with its figures.
+    const AutoChoice g = choice_of(features_of(glass_caustic()));
+    EXPECT_NE(g.reason.find("caustic paths"), std::string::npos) << g.reason;
+    EXPECT_NE(g.reason.find("100 %"), std::string::npos) << g.reason;
+}
+
+TEST(AutoPolicy, HiddenObjectsSendCausticsToPathAndNothingLitToo) {
+    MeshBuilder b = floor_and_mirror(true);
+    b.add_point_light(Vec3(0.f, 1.f, -3.f), Color(50.f));
+    SceneArrays a = b.arrays();
+    const uint8_t flags[2] = {uint8_t(k_object_default), uint8_t(k_object_default & ~k_ray_diffuse)};
+    a.set("instance_flags", ElemType::U8, {2}, flags);
+    const AutoChoice c = choice_of(features_of(a));  // caustics, but only PATH honours diffuse-ray visibility
+    EXPECT_EQ(c.integrator, "PATH");
+    EXPECT_EQ(c.rule, "path_only_visibility");
+    EXPECT_EQ(choice_of(features_of(floor_and_mirror(true).arrays())).rule, "nothing_lit");
+}
+
+TEST(AutoPolicy, RulesWhoseIntegratorIsMissingAreSkipped) {
+    const SceneFeatures f = features_of(glass_caustic());
+    const AutoChoice with_sppm = choose_integrator(f, [](const std::string&) { return true; });
+    EXPECT_EQ(with_sppm.integrator, "SPPM");
+    const AutoChoice without = choose_integrator(f, [](const std::string& n) { return n != "SPPM"; });
+    EXPECT_EQ(without.integrator, "BDPT");
+    const AutoChoice path_only = choose_integrator(f, [](const std::string& n) { return n == "PATH"; });
+    EXPECT_EQ(path_only.integrator, "PATH");
+    EXPECT_EQ(path_only.rule, "default");  // the next rule that applies with an available integrator
+    // Every rule names an integrator; the last always applies.
+    EXPECT_TRUE(auto_rules().back().applies(SceneFeatures{}));
+}
+
+// AUTO renders the chosen integrator's image, bit for bit, and says what it chose in the log and the status.
+void expect_auto_is(SceneArrays arrays, const char* expected) {
+    Params base = basic_params(16, 12, 4, 3);
+    base.set("threads", int64_t(2));
+    const PreparedScene scene(std::move(arrays), base);
+    Params chosen, autop;
+    chosen.set("integrator", std::string(expected));
+    autop.set("integrator", std::string("AUTO"));
+    const RenderResult a = scene.render(autop), b = scene.render(chosen);
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < a.rgba.size(); ++i) differ += a.rgba[i] != b.rgba[i];
+    EXPECT_EQ(differ, 0u) << expected;
+    EXPECT_EQ(a.samples_done, b.samples_done);
+    EXPECT_GT(a.mean_rgb, 0.0);
+
+    Params p = base;
+    p.set("integrator", std::string("AUTO"));
+    Film film(16, 12, 0, 0, 32);
+    const std::unique_ptr<Integrator> integrator = make_integrator(p);
+    CancelToken cancel;
+    RenderCounters counters;
+    MessageLog log;
+    RenderContext ctx{cancel, counters, 2, nullptr, &log};
+    integrator->render(scene.scene(), film, ctx);
+    const std::string method = counters.method.get();
+    EXPECT_EQ(method.rfind(std::string("Auto: ") + expected + " \xe2\x80\x94 ", 0), 0u) << method;
+    const std::vector<std::string> lines = log.take();
+    bool features = false, decision = false;
+    for (const std::string& l : lines) {
+        std::printf("%s\n", l.c_str());  // what the user's log shows (docs/auto.md quotes it)
+        features |= l.rfind("Auto: scene features:", 0) == 0;
+        decision |= l.rfind(std::string("Auto: chose ") + expected, 0) == 0;
+    }
+    EXPECT_TRUE(features && decision) << expected;
+    EXPECT_EQ(counters.work_total.load(), 4);
+}
+
+TEST(AutoIntegrator, RendersTheChosenIntegratorsImageBitForBit) {
+    expect_auto_is(cornell_box(), "PATH");
+    expect_auto_is(glass_caustic(), "BDPT");
+}
+
+}  // namespace
+}  // namespace candela::test
