@@ -7,8 +7,8 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib \
-    povray libxxhash-dev xvfb xauth libgl1-mesa-dri
-# libxxhash-dev: keys of the viewport's mesh BVH cache. xvfb, xauth and Mesa's software OpenGL (llvmpipe, in
+    povray libxxhash-dev xvfb xauth libgl1-mesa-dri libnanoflann-dev
+# libnanoflann-dev: the photon maps' kd-trees (header-only). libxxhash-dev: keys of the viewport's mesh BVH cache. xvfb, xauth and Mesa's software OpenGL (llvmpipe, in
 # libgl1-mesa-dri): the GUI tests run Blender's window under Xvfb.
 
 .PHONY: all deps build demo test bench microbench accuracy povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
