@@ -124,6 +124,9 @@ void Session::run() {
         end_phase = SessionPhase::Failed;
         error = "unknown error in the render thread";
     }
+    // A cancel before the integrator's driver ran (during the scene build, say) leaves no stop reason of its own.
+    if (end_phase == SessionPhase::Cancelled && StopReason(m_counters.stop_reason.load()) == StopReason::Running)
+        m_counters.stop_reason.store(decltype(m_counters.stop_reason.load())(StopReason::Cancelled));
     std::lock_guard<std::mutex> lock(m_mutex);
     m_phase = end_phase;
     m_error = error;

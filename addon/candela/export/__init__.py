@@ -101,10 +101,8 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
     lights = LightTable(warnings)
     bits = schema.instance_flags()
     view_layer = _original_view_layer(depsgraph)
-    if getattr(scene.render, "use_motion_blur", False):
-        # Not yet (issue 21): objects and camera are exported at the current frame's time only.
-        warnings.add("Candela: Motion Blur is not supported yet: the frame is rendered at its current time, "
-                     "without blur")
+    # Motion blur is reported with the other ignored settings (unsupported.ignored_settings): objects and camera are
+    # exported at the current frame's time only.
 
     for i, inst in enumerate(depsgraph.object_instances):
         if i % BREAK_EVERY == BREAK_EVERY - 1:
