@@ -10,6 +10,7 @@
 
 #include "core/math.h"
 #include "core/vec.h"
+#include "sampling/erfinv.h"
 
 namespace candela {
 
@@ -53,31 +54,7 @@ inline bool refract(const Vec3& wo, const Vec3& n, float eta, Vec3* wt) {
 /// Inverse error function: Giles 2010 single-precision approximation, polished by two Newton steps.
 inline float erfinv(float x) {
     x = clamp(x, -0.99999994f, 0.99999994f);
-    float w = -std::log((1.f - x) * (1.f + x)), p;
-    if (w < 5.f) {
-        w -= 2.5f;
-        p = 2.81022636e-08f;
-        p = 3.43273939e-07f + p * w;
-        p = -3.5233877e-06f + p * w;
-        p = -4.39150654e-06f + p * w;
-        p = 0.00021858087f + p * w;
-        p = -0.00125372503f + p * w;
-        p = -0.00417768164f + p * w;
-        p = 0.246640727f + p * w;
-        p = 1.50140941f + p * w;
-    } else {
-        w = std::sqrt(w) - 3.f;
-        p = -0.000200214257f;
-        p = 0.000100950558f + p * w;
-        p = 0.00134934322f + p * w;
-        p = -0.00367342844f + p * w;
-        p = 0.00573950773f + p * w;
-        p = -0.0076224613f + p * w;
-        p = 0.00943887047f + p * w;
-        p = 1.00167406f + p * w;
-        p = 2.83297682f + p * w;
-    }
-    double y = double(p) * x;
+    double y = double(erfinv_giles_factor(x)) * x;
     for (int i = 0; i < 2; ++i) {  // Newton on erf(y) = x: erf'(y) = 2/√π·exp(−y²)
         const double err = std::erf(y) - double(x);
         y -= err / (1.1283791670955126 * std::exp(-y * y));
