@@ -411,6 +411,9 @@ struct Scene::Builder {
     }
 
     void account_memory() {
+        // Placements grow one geometry id at a time; the scene keeps exactly one record per object.
+        scene.m_placements.shrink_to_fit();
+        scene.m_object_flags.shrink_to_fit();
         for (const MeshShading& s : scene.m_shading)
             scene.m_stats.shading_bytes += s.material.capacity() * sizeof(uint32_t) + s.smooth.capacity() +
                                            s.normals.capacity() * sizeof(Vec3) + s.emissive_rank.capacity() * sizeof(int32_t) +
