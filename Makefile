@@ -7,13 +7,19 @@ CLEAN_ENV := env -u PYTHONPATH -u PYTHONHOME -u VIRTUAL_ENV
 
 DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev libtbb-dev python3-dev \
     python3-numpy libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3-pytest python3-matplotlib \
-    povray libxxhash-dev xvfb xauth libgl1-mesa-dri libnanoflann-dev
-# libnanoflann-dev: the photon maps' kd-trees (header-only). libxxhash-dev: keys of the viewport's mesh BVH cache. xvfb, xauth and Mesa's software OpenGL (llvmpipe, in
+    povray libxxhash-dev xvfb xauth libgl1-mesa-dri libnanoflann-dev clang-format
+# clang-format: the format check (`make format` applies .clang-format). libnanoflann-dev: the photon maps' kd-trees (header-only). libxxhash-dev: keys of the viewport's mesh BVH cache. xvfb, xauth and Mesa's software OpenGL (llvmpipe, in
 # libgl1-mesa-dri): the GUI tests run Blender's window under Xvfb.
 
-.PHONY: all deps build demo test bench microbench accuracy povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
+FORMAT_FILES = $(shell find native tests bench -name '*.cpp' -o -name '*.h')
+
+.PHONY: format all deps build demo test bench microbench accuracy povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
 
 all: build
+
+# Rewrites the C++ sources to follow .clang-format (the test format_check fails on any difference).
+format: deps
+	@clang-format -i $(FORMAT_FILES)
 
 # Installs the Debian packages that are missing (apt-get update + install, as root or through sudo).
 deps:

@@ -5,11 +5,11 @@
 
 #include "core/rng.h"
 #include "film/pixel_filter.h"
+#include "input/scene_arrays.h"
 #include "lights/light.h"
 #include "sampling/warp.h"
 #include "scene/coplanar_overlap.h"
 #include "scene/scene.h"
-#include "input/scene_arrays.h"
 
 namespace candela {
 namespace {
@@ -53,7 +53,8 @@ BENCHMARK(BM_TriangleLightSample);
 /// A closed box of 12 triangles with the camera inside: closest hits in random directions.
 void BM_SceneIntersect(benchmark::State& state) {
     const float p[24] = {-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1, -1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1, 1};
-    const uint32_t t[36] = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1, 3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
+    const uint32_t t[36] = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
+                            3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
     const uint32_t zeros[12] = {}, start[2] = {0, 12}, inst[1] = {0}, mtype[1] = {0};
     const float eye[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, mat[6] = {0.5f, 0.5f, 0.5f, 0, 0, 0};
     SceneArrays a;

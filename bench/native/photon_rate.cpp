@@ -5,8 +5,8 @@
 //   candela_bench_photons DUMP_DIR [--paths N] [--threads T]
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -36,7 +36,8 @@ double raw_ray_rate(const Scene& scene, int threads, size_t count, double* per_c
     std::vector<Ray> rays;
     Pcg32 rng(7, 11);
     for (size_t attempts = 0; rays.size() < count && attempts < 4 * count; ++attempts) {
-        const Ray primary = cam.generate_ray({rng.next_float() * cam.full_width(), rng.next_float() * cam.full_height()});
+        const Ray primary =
+            cam.generate_ray({rng.next_float() * cam.full_width(), rng.next_float() * cam.full_height()});
         SurfaceHit hit;
         if (!scene.intersect(primary, &hit)) continue;
         const Vec3 d = sample_uniform_sphere({rng.next_float(), rng.next_float()});
@@ -72,8 +73,10 @@ int main(int argc, char** argv) {
     int64_t paths = 4'000'000;
     int threads = 0;
     for (int i = 2; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--paths") && i + 1 < argc) paths = std::stoll(argv[++i]);
-        else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::stoi(argv[++i]);
+        if (!std::strcmp(argv[i], "--paths") && i + 1 < argc)
+            paths = std::stoll(argv[++i]);
+        else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
+            threads = std::stoi(argv[++i]);
     }
     try {
         SceneDump dump = read_scene_dump(argv[1]);
@@ -101,16 +104,17 @@ int main(int argc, char** argv) {
         const double build_s = seconds_since(t0), build_cpu = cpu_now() - c0;
         const double raw_after = raw_ray_rate(scene, threads, 2'000'000, &raw_cpu_after);
         const double raw = 0.5 * (raw_before + raw_after), raw_cpu = 0.5 * (raw_cpu_before + raw_cpu_after);
-        std::printf("{\"photon_paths\": %lld, \"stored_photons\": %zu, \"shoot_seconds\": %.4f, "
-                    "\"photon_paths_per_second\": %.1f, \"stored_photons_per_second\": %.1f, "
-                    "\"photon_rays_per_second\": %.1f, \"raw_rays_per_second\": %.1f, \"share_of_raw\": %.4f, "
-                    "\"build_seconds\": %.4f, \"build_seconds_per_10M\": %.4f, \"map_bytes_per_photon\": %.2f, "
-                    "\"shoot_cpu_seconds\": %.4f, \"build_cpu_seconds\": %.4f, \"share_of_raw_per_cpu_second\": %.4f, "
-                    "\"threads\": %d}\n",
-                    (long long)paths, stored, shoot_s, double(paths) / shoot_s, double(stored) / shoot_s,
-                    double(rays) / shoot_s, raw, double(rays) / shoot_s / raw, build_s,
-                    stored ? build_s * 1e7 / double(stored) : 0.0, stored ? map.memory_bytes() / double(stored) : 0.0,
-                    shoot_cpu, build_cpu, (double(rays) / shoot_cpu) / raw_cpu, resolve_thread_count(threads));
+        std::printf(
+            "{\"photon_paths\": %lld, \"stored_photons\": %zu, \"shoot_seconds\": %.4f, "
+            "\"photon_paths_per_second\": %.1f, \"stored_photons_per_second\": %.1f, "
+            "\"photon_rays_per_second\": %.1f, \"raw_rays_per_second\": %.1f, \"share_of_raw\": %.4f, "
+            "\"build_seconds\": %.4f, \"build_seconds_per_10M\": %.4f, \"map_bytes_per_photon\": %.2f, "
+            "\"shoot_cpu_seconds\": %.4f, \"build_cpu_seconds\": %.4f, \"share_of_raw_per_cpu_second\": %.4f, "
+            "\"threads\": %d}\n",
+            (long long)paths, stored, shoot_s, double(paths) / shoot_s, double(stored) / shoot_s,
+            double(rays) / shoot_s, raw, double(rays) / shoot_s / raw, build_s,
+            stored ? build_s * 1e7 / double(stored) : 0.0, stored ? map.memory_bytes() / double(stored) : 0.0,
+            shoot_cpu, build_cpu, (double(rays) / shoot_cpu) / raw_cpu, resolve_thread_count(threads));
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

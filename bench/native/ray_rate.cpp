@@ -29,9 +29,12 @@ int main(int argc, char** argv) {
     int threads = 0;
     bool skip_origin = false;
     for (int i = 2; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--rays") && i + 1 < argc) ray_count = std::stoull(argv[++i]);
-        else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::stoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--skip-origin")) skip_origin = true;
+        if (!std::strcmp(argv[i], "--rays") && i + 1 < argc)
+            ray_count = std::stoull(argv[++i]);
+        else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
+            threads = std::stoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--skip-origin"))
+            skip_origin = true;
     }
     try {
         SceneDump dump = read_scene_dump(argv[1]);
@@ -48,7 +51,8 @@ int main(int argc, char** argv) {
         size_t attempts = 0;
         while (rays.size() < ray_count && attempts < 4 * ray_count) {
             ++attempts;
-            const Ray primary = cam.generate_ray({rng.next_float() * cam.full_width(), rng.next_float() * cam.full_height()});
+            const Ray primary =
+                cam.generate_ray({rng.next_float() * cam.full_width(), rng.next_float() * cam.full_height()});
             SurfaceHit hit;
             if (!scene.intersect(primary, &hit)) continue;
             const Vec3 d = sample_uniform_sphere({rng.next_float(), rng.next_float()});
@@ -85,10 +89,11 @@ int main(int argc, char** argv) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         size_t total_hits = 0;
         for (uint32_t h : hits) total_hits += h;
-        std::printf("{\"rays\": %zu, \"seconds\": %.6f, \"rays_per_second\": %.1f, \"hit_fraction\": %.4f, \"threads\": %d, "
-                    "\"skip_origin\": %s}\n",
-                    rays.size(), seconds, rays.size() / seconds, double(total_hits) / rays.size(),
-                    resolve_thread_count(threads), skip_origin ? "true" : "false");
+        std::printf(
+            "{\"rays\": %zu, \"seconds\": %.6f, \"rays_per_second\": %.1f, \"hit_fraction\": %.4f, \"threads\": %d, "
+            "\"skip_origin\": %s}\n",
+            rays.size(), seconds, rays.size() / seconds, double(total_hits) / rays.size(),
+            resolve_thread_count(threads), skip_origin ? "true" : "false");
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -49,7 +49,9 @@ std::map<std::string, Program> texture_programs() {
     make("Noise4DDetail15", [](Program& p, uint32_t v) {
         p.op(ShaderOpCode::TexNoise, v, p.constant(0.3f, 5.f, 15.f), p.constant(0.5f, 0.f, 0.f), {4, 0, 0, 0});
     });
-    make("WhiteNoise3D", [](Program& p, uint32_t v) { p.op(ShaderOpCode::TexWhiteNoise, v, p.constant(0.f, 0.f, 0.f), 0, {3, 1, 0, 0}); });
+    make("WhiteNoise3D", [](Program& p, uint32_t v) {
+        p.op(ShaderOpCode::TexWhiteNoise, v, p.constant(0.f, 0.f, 0.f), 0, {3, 1, 0, 0});
+    });
     make("VoronoiF1", [](Program& p, uint32_t v) {
         p.op(ShaderOpCode::TexVoronoi, v, p.constant(0.f, 5.f, 1.f), p.constant(0.5f, 1.f, 0.f), {3, 0, 0, 0});
     });
@@ -63,7 +65,9 @@ std::map<std::string, Program> texture_programs() {
     make("WaveBands", [](Program& p, uint32_t v) {
         p.op(ShaderOpCode::TexWave, v, p.constant(5.f, 0.f, 2.f), p.constant(1.f, 0.5f, 0.f), {0, 0, 0, 0});
     });
-    make("Magic", [](Program& p, uint32_t v) { p.op(ShaderOpCode::TexMagic, v, p.constant(5.f, 1.f, 0.f), 0, {2, 0, 0, 0}); });
+    make("Magic", [](Program& p, uint32_t v) {
+        p.op(ShaderOpCode::TexMagic, v, p.constant(5.f, 1.f, 0.f), 0, {2, 0, 0, 0});
+    });
     make("Checker", [](Program& p, uint32_t v) {
         const uint32_t scale = p.constant(5.f, 5.f, 5.f);
         p.op(ShaderOpCode::TexChecker, v, p.constant(0.8f, 0.8f, 0.8f), p.constant(0.2f, 0.2f, 0.2f), {scale, 0, 0, 0});
@@ -73,7 +77,8 @@ std::map<std::string, Program> texture_programs() {
                        shape = p.constant(0.f, 0.5f, 0.25f);
         const uint32_t k = uint32_t(p.consts.size());
         p.consts.insert(p.consts.end(), {0.5f, 2.f, 1.f, 2.f, 0.f});
-        p.op(ShaderOpCode::TexBrick, v, p.constant(0.8f, 0.8f, 0.8f), p.constant(0.2f, 0.2f, 0.2f), {mortar, sizes, shape, k});
+        p.op(ShaderOpCode::TexBrick, v, p.constant(0.8f, 0.8f, 0.8f), p.constant(0.2f, 0.2f, 0.2f),
+             {mortar, sizes, shape, k});
     });
     make("Gradient", [](Program& p, uint32_t v) { p.op(ShaderOpCode::TexGradient, v, 0, 0, {0, 0, 0, 0}); });
     return out;
@@ -133,18 +138,23 @@ public:
         for (const Run& r : runs) {
             const std::string name = r.benchmark_name();
             const double ns = r.GetAdjustedRealTime();
-            if (name == "BM_TextureImageLookup") m_image_ns = ns;
-            else if (name.rfind("BM_TextureProcedural/", 0) == 0) m_procedural.emplace_back(name.substr(21), ns);
+            if (name == "BM_TextureImageLookup")
+                m_image_ns = ns;
+            else if (name.rfind("BM_TextureProcedural/", 0) == 0)
+                m_procedural.emplace_back(name.substr(21), ns);
         }
         ConsoleReporter::ReportRuns(runs);
     }
     void Finalize() override {
         ConsoleReporter::Finalize();
         if (m_image_ns <= 0.0 || m_procedural.empty()) return;
-        std::printf("\nShading evaluation per texture (Blender's defaults) against an image lookup (1024^2 8-bit sRGB, "
-                    "linear), this run:\n%-18s %10s %10s\n", "texture", "ns/call", "x image");
+        std::printf(
+            "\nShading evaluation per texture (Blender's defaults) against an image lookup (1024^2 8-bit sRGB, "
+            "linear), this run:\n%-18s %10s %10s\n",
+            "texture", "ns/call", "x image");
         std::printf("%-18s %10.1f %10.2f\n", "ImageLookup", m_image_ns, 1.0);
-        for (const auto& [name, ns] : m_procedural) std::printf("%-18s %10.1f %10.2f\n", name.c_str(), ns, ns / m_image_ns);
+        for (const auto& [name, ns] : m_procedural)
+            std::printf("%-18s %10.1f %10.2f\n", name.c_str(), ns, ns / m_image_ns);
     }
 
 private:

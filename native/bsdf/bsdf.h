@@ -158,7 +158,8 @@ private:
         float sum = 0.f;
         for (int i = 0; i < m_count; ++i)
             if (p[size_t(i)] > 0.f)
-                sum += p[size_t(i)] * std::visit([&](const auto& l) { return l.pdf(wo, wi, mode); }, m_lobes[size_t(i)].lobe);
+                sum += p[size_t(i)] *
+                       std::visit([&](const auto& l) { return l.pdf(wo, wi, mode); }, m_lobes[size_t(i)].lobe);
         return sum;
     }
 
@@ -195,8 +196,10 @@ private:
         float pdf_sum = 0.f;
         for (int i = 0; i < m_count; ++i)
             if (p[size_t(i)] > 0.f)
-                pdf_sum += p[size_t(i)] * (i == chosen ? s.pdf : std::visit([&](const auto& l) { return l.pdf(wo, s.wi, mode); },
-                                                                            m_lobes[size_t(i)].lobe));
+                pdf_sum +=
+                    p[size_t(i)] * (i == chosen ? s.pdf
+                                                : std::visit([&](const auto& l) { return l.pdf(wo, s.wi, mode); },
+                                                             m_lobes[size_t(i)].lobe));
         s.pdf = pdf_sum;
         if (!(s.pdf > 0.f) || !std::isfinite(s.pdf) || !is_finite(s.f)) return {};
         return s;
@@ -205,8 +208,8 @@ private:
     std::array<WeightedLobe, k_max_lobes> m_lobes{};
     BumpShadowing m_shadowing;
     int m_count = 0;
-    uint32_t m_flags = 0;      // union of the lobes' flags
-    bool m_all_delta = true;   // every lobe specular (vacuous when empty; is_delta() checks m_count)
+    uint32_t m_flags = 0;     // union of the lobes' flags
+    bool m_all_delta = true;  // every lobe specular (vacuous when empty; is_delta() checks m_count)
 };
 
 /// Mix Shader: (1 − fac)·a + fac·b (fac clamped to [0, 1]).
@@ -242,7 +245,7 @@ struct PrincipledParams {
     float ior = 1.45f;
     float transmission = 0.f;
     float transmission_roughness = 0.f;  // not yet used: the glass lobe has one roughness
-    bool backfacing = false;  // the path arrives on the back face: the glass sees 1/ior
+    bool backfacing = false;             // the path arrives on the back face: the glass sees 1/ior
 };
 
 /// The closure list Cycles 3.4's svm/closure.h builds for Principled v1 (docs/conventions.md §5).

@@ -20,15 +20,15 @@ enum BsdfFlags : uint32_t {
     k_bsdf_transmission = 1u << 1,
     k_bsdf_diffuse = 1u << 2,
     k_bsdf_glossy = 1u << 3,
-    k_bsdf_specular = 1u << 4,  // delta distribution: f and pdf are only meaningful for the sampled wi
+    k_bsdf_specular = 1u << 4,     // delta distribution: f and pdf are only meaningful for the sampled wi
     k_bsdf_transparent = 1u << 5,  // a Transparent BSDF's pass-through (Cycles' LABEL_TRANSPARENT): not a bounce
 };
 
 struct BsdfSample {
-    Color f;              // BSDF value for (wo, wi), without the cosine (for delta samples: weight/|cos θi|)
-    Vec3 wi;              // sampled incident direction, local frame (z < 0 for transmission)
-    float pdf = 0.f;      // solid-angle density of wi (for delta samples: the discrete probability); 0 = no sample
-    float eta = 1.f;      // η(wi side)/η(wo side) for transmission, 1 otherwise
+    Color f;          // BSDF value for (wo, wi), without the cosine (for delta samples: weight/|cos θi|)
+    Vec3 wi;          // sampled incident direction, local frame (z < 0 for transmission)
+    float pdf = 0.f;  // solid-angle density of wi (for delta samples: the discrete probability); 0 = no sample
+    float eta = 1.f;  // η(wi side)/η(wo side) for transmission, 1 otherwise
     uint32_t flags = k_bsdf_none;
 
     bool valid() const { return pdf > 0.f; }

@@ -197,8 +197,8 @@ struct MicrofacetDielectric {
         if (!transmission_half_vector(wo, wi, &h, &wo_h, &wi_h)) return Color(0.f);
         const float T = refraction_only ? 1.f : 1.f - fresnel_dielectric(wo_h, eta);
         const float denom = sqr(wo_h + eta * wi_h);
-        float v = T * distribution.D(h) * distribution.G(wo, wi) * std::fabs(wi_h) * wo_h /
-                  (wo.z * std::fabs(wi.z) * denom);
+        float v =
+            T * distribution.D(h) * distribution.G(wo, wi) * std::fabs(wi_h) * wo_h / (wo.z * std::fabs(wi.z) * denom);
         if (mode == TransportMode::Importance) v *= eta * eta;
         return tint_t * v;
     }

@@ -8,16 +8,35 @@
 namespace candela {
 
 const std::vector<std::string>& material_columns() {
-    static const std::vector<std::string> cols = {"base_r", "base_g", "base_b", "emission_r", "emission_g", "emission_b"};
+    static const std::vector<std::string> cols = {"base_r",     "base_g",     "base_b",
+                                                  "emission_r", "emission_g", "emission_b"};
     return cols;
 }
 
 const std::vector<std::string>& closure_columns() {
-    static const std::vector<std::string> cols = {
-        "weight_r", "weight_g", "weight_b", "color_r", "color_g", "color_b", "roughness", "anisotropy", "ior",
-        "distribution", "metallic", "specular", "specular_tint", "sheen", "sheen_tint", "clearcoat",
-        "clearcoat_roughness", "transmission", "transmission_roughness", "subsurface", "subsurface_r",
-        "subsurface_g", "subsurface_b"};
+    static const std::vector<std::string> cols = {"weight_r",
+                                                  "weight_g",
+                                                  "weight_b",
+                                                  "color_r",
+                                                  "color_g",
+                                                  "color_b",
+                                                  "roughness",
+                                                  "anisotropy",
+                                                  "ior",
+                                                  "distribution",
+                                                  "metallic",
+                                                  "specular",
+                                                  "specular_tint",
+                                                  "sheen",
+                                                  "sheen_tint",
+                                                  "clearcoat",
+                                                  "clearcoat_roughness",
+                                                  "transmission",
+                                                  "transmission_roughness",
+                                                  "subsurface",
+                                                  "subsurface_r",
+                                                  "subsurface_g",
+                                                  "subsurface_b"};
     return cols;
 }
 
@@ -27,8 +46,8 @@ const std::vector<std::string>& material_type_names() {
 }
 
 const std::vector<std::string>& closure_type_names() {
-    static const std::vector<std::string> names = {"DIFFUSE", "GLOSSY", "GLASS", "REFRACTION", "TRANSLUCENT",
-                                                   "TRANSPARENT", "PRINCIPLED"};
+    static const std::vector<std::string> names = {"DIFFUSE",     "GLOSSY",      "GLASS",     "REFRACTION",
+                                                   "TRANSLUCENT", "TRANSPARENT", "PRINCIPLED"};
     return names;
 }
 
@@ -41,9 +60,25 @@ struct ClosureRow {
     Color rgb(int first) const { return Color(v[first], v[first + 1], v[first + 2]); }
 };
 
-enum Col { WeightR = 0, ColorR = 3, Roughness = 6, Anisotropy, Ior, Distribution, Metallic, Specular, SpecularTint,
-           Sheen, SheenTint, Clearcoat, ClearcoatRoughness, Transmission, TransmissionRoughness, Subsurface,
-           SubsurfaceR };
+enum Col {
+    WeightR = 0,
+    ColorR = 3,
+    Roughness = 6,
+    Anisotropy,
+    Ior,
+    Distribution,
+    Metallic,
+    Specular,
+    SpecularTint,
+    Sheen,
+    SheenTint,
+    Clearcoat,
+    ClearcoatRoughness,
+    Transmission,
+    TransmissionRoughness,
+    Subsurface,
+    SubsurfaceR
+};
 
 /// Cycles' anisotropic roughness (Anisotropic BSDF node): α = roughness², stretched by the anisotropy.
 Microfacet microfacet(float roughness, float anisotropy, uint32_t distribution) {
@@ -66,41 +101,39 @@ Bsdf closure_bsdf(ClosureType type, const ClosureRow& r, bool backfacing) {
     const Color color = r.rgb(ColorR);
     const uint32_t distribution = uint32_t(r[Distribution] + 0.5f);
     switch (type) {
-        case ClosureType::Diffuse:
-            return r[Roughness] > 0.f ? Bsdf(OrenNayarBsdf{clamp(r[Roughness], 0.f, 1.f)}, color)
-                                      : Bsdf(LambertBsdf{}, color);
-        case ClosureType::Glossy:
-            return Bsdf(MicrofacetReflection{microfacet(r[Roughness], r[Anisotropy], distribution), SpecularFresnel{}},
-                        color);
-        case ClosureType::Glass:
-        case ClosureType::Refraction:
-            return glass_bsdf(color, r[Roughness], r[Ior], backfacing,
-                              distribution == 1 ? MicrofacetDistribution::Beckmann : MicrofacetDistribution::GGX,
-                              type == ClosureType::Refraction);
-        case ClosureType::Translucent:
-            return Bsdf(TranslucentBsdf{}, color);
-        case ClosureType::Transparent:
-            return Bsdf(TransparentBsdf{}, color);
-        case ClosureType::Principled: {
-            PrincipledParams p;
-            p.base_color = color;
-            p.subsurface = r[Subsurface];
-            p.subsurface_color = r.rgb(SubsurfaceR);
-            p.metallic = r[Metallic];
-            p.specular = r[Specular];
-            p.specular_tint = r[SpecularTint];
-            p.roughness = r[Roughness];
-            p.anisotropic = r[Anisotropy];
-            p.sheen = r[Sheen];
-            p.sheen_tint = r[SheenTint];
-            p.clearcoat = r[Clearcoat];
-            p.clearcoat_roughness = r[ClearcoatRoughness];
-            p.ior = r[Ior];
-            p.transmission = r[Transmission];
-            p.transmission_roughness = r[TransmissionRoughness];
-            p.backfacing = backfacing;
-            return principled_bsdf(p);
-        }
+    case ClosureType::Diffuse:
+        return r[Roughness] > 0.f ? Bsdf(OrenNayarBsdf{clamp(r[Roughness], 0.f, 1.f)}, color)
+                                  : Bsdf(LambertBsdf{}, color);
+    case ClosureType::Glossy:
+        return Bsdf(MicrofacetReflection{microfacet(r[Roughness], r[Anisotropy], distribution), SpecularFresnel{}},
+                    color);
+    case ClosureType::Glass:
+    case ClosureType::Refraction:
+        return glass_bsdf(color, r[Roughness], r[Ior], backfacing,
+                          distribution == 1 ? MicrofacetDistribution::Beckmann : MicrofacetDistribution::GGX,
+                          type == ClosureType::Refraction);
+    case ClosureType::Translucent: return Bsdf(TranslucentBsdf{}, color);
+    case ClosureType::Transparent: return Bsdf(TransparentBsdf{}, color);
+    case ClosureType::Principled: {
+        PrincipledParams p;
+        p.base_color = color;
+        p.subsurface = r[Subsurface];
+        p.subsurface_color = r.rgb(SubsurfaceR);
+        p.metallic = r[Metallic];
+        p.specular = r[Specular];
+        p.specular_tint = r[SpecularTint];
+        p.roughness = r[Roughness];
+        p.anisotropic = r[Anisotropy];
+        p.sheen = r[Sheen];
+        p.sheen_tint = r[SheenTint];
+        p.clearcoat = r[Clearcoat];
+        p.clearcoat_roughness = r[ClearcoatRoughness];
+        p.ior = r[Ior];
+        p.transmission = r[Transmission];
+        p.transmission_roughness = r[TransmissionRoughness];
+        p.backfacing = backfacing;
+        return principled_bsdf(p);
+    }
     }
     return Bsdf();
 }
@@ -175,8 +208,10 @@ std::vector<Material> load_materials(const SceneArrays& arrays) {
         for (size_t c = 0; c < n; ++c) {
             const uint32_t mat = owner.data<uint32_t>()[c], type = ctype.data<uint32_t>()[c];
             const std::string where = "closure " + std::to_string(c) + " of material " + std::to_string(mat);
-            if (mat >= out.size()) throw InvalidScene(where + ": there are only " + std::to_string(out.size()) + " materials");
-            if (type >= closure_type_names().size()) throw InvalidScene(where + ": unknown closure type " + std::to_string(type));
+            if (mat >= out.size())
+                throw InvalidScene(where + ": there are only " + std::to_string(out.size()) + " materials");
+            if (type >= closure_type_names().size())
+                throw InvalidScene(where + ": unknown closure type " + std::to_string(type));
             const ClosureRow row{params.data<float>() + c * pcols};
             check_closure(ClosureType(type), row, where);
             Material& m = out[mat];

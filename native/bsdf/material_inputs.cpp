@@ -78,7 +78,8 @@ std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, cons
     const uint32_t* r = bind->data<uint32_t>();
     for (size_t i = 0; i < bind->shape[0]; ++i, r += 6) {
         const std::string where = "input_bindings[" + std::to_string(i) + "]";
-        if (r[0] >= input_target_names().size()) throw InvalidScene(where + ": target " + std::to_string(r[0]) + " is unknown");
+        if (r[0] >= input_target_names().size())
+            throw InvalidScene(where + ": target " + std::to_string(r[0]) + " is unknown");
         RawBinding b{InputTarget(r[0]), r[1], r[2], r[3], r[4], r[5]};
         if (b.program >= shaders.program_count())
             throw InvalidScene(where + ": program " + std::to_string(b.program) + " does not exist");
@@ -87,25 +88,27 @@ std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, cons
                                std::to_string(b.program));
         uint32_t material = 0;
         switch (b.target) {
-            case InputTarget::Closure:
-                if (b.row >= n_closures) throw InvalidScene(where + ": closure " + std::to_string(b.row) + " does not exist");
-                if (!(b.channels == 1 || b.channels == 3)) throw InvalidScene(where + ": channels must be 1 or 3");
-                if (b.column + b.channels > stride)
-                    throw InvalidScene(where + ": columns " + std::to_string(b.column) + "+" + std::to_string(b.channels) +
-                                       " are past the closure table's " + std::to_string(stride) + " columns");
-                material = owner->data<uint32_t>()[b.row];
-                break;
-            case InputTarget::Emission:
-            case InputTarget::Normal:
-            case InputTarget::Holdout:
-                if (b.row >= materials.size()) throw InvalidScene(where + ": material " + std::to_string(b.row) + " does not exist");
-                material = b.row;
-                break;
-            case InputTarget::World:
-                if (*world_program >= 0) throw InvalidScene(where + ": the world has a second binding");
-                *world_program = int32_t(b.program);
-                *world_reg = int32_t(b.reg);
-                continue;
+        case InputTarget::Closure:
+            if (b.row >= n_closures)
+                throw InvalidScene(where + ": closure " + std::to_string(b.row) + " does not exist");
+            if (!(b.channels == 1 || b.channels == 3)) throw InvalidScene(where + ": channels must be 1 or 3");
+            if (b.column + b.channels > stride)
+                throw InvalidScene(where + ": columns " + std::to_string(b.column) + "+" + std::to_string(b.channels) +
+                                   " are past the closure table's " + std::to_string(stride) + " columns");
+            material = owner->data<uint32_t>()[b.row];
+            break;
+        case InputTarget::Emission:
+        case InputTarget::Normal:
+        case InputTarget::Holdout:
+            if (b.row >= materials.size())
+                throw InvalidScene(where + ": material " + std::to_string(b.row) + " does not exist");
+            material = b.row;
+            break;
+        case InputTarget::World:
+            if (*world_program >= 0) throw InvalidScene(where + ": the world has a second binding");
+            *world_program = int32_t(b.program);
+            *world_reg = int32_t(b.reg);
+            continue;
         }
         if (!by_material[material].empty() && by_material[material][0].program != b.program)
             throw InvalidScene(where + ": material " + std::to_string(material) +
@@ -129,37 +132,37 @@ std::vector<MaterialInputs> load_material_inputs(const SceneArrays& arrays, cons
         for (const RawBinding& b : by_material[m]) {
             const bool varying = shaders.varying(in.program, b.reg);
             switch (b.target) {
-                case InputTarget::Closure:
-                    if (varying) {
-                        in.bindings.push_back({local_index[b.row], b.column, b.channels, b.reg});
-                    } else {
-                        float* dst = in.rows.data() + local_index[b.row] * stride + b.column;
-                        for (uint32_t k = 0; k < b.channels; ++k) dst[k] = regs[b.reg][int(k)];
-                    }
-                    break;
-                case InputTarget::Emission:
-                    if (varying) {
-                        in.emission_reg = int32_t(b.reg);
-                        mat.emission = Color(0.f);  // per hit (Scene::shade); its triangles are lights (Scene::emission)
-                    } else {
-                        mat.emission = vmax(regs[b.reg], Color(0.f));
-                    }
-                    break;
-                case InputTarget::Normal:
-                    if (varying) {  // a constant normal input is ignored
-                        in.normal_reg = int32_t(b.reg);
-                        in.normal_is_displacement = b.column == 1;
-                    }
-                    break;
-                case InputTarget::Holdout:
-                    if (varying) {
-                        in.holdout_reg = int32_t(b.reg);
-                    } else if (holdout) {
-                        if (holdout->size() < materials.size()) holdout->resize(materials.size(), 0.f);
-                        (*holdout)[m] = holdout_weight(regs[b.reg]);
-                    }
-                    break;
-                case InputTarget::World: break;
+            case InputTarget::Closure:
+                if (varying) {
+                    in.bindings.push_back({local_index[b.row], b.column, b.channels, b.reg});
+                } else {
+                    float* dst = in.rows.data() + local_index[b.row] * stride + b.column;
+                    for (uint32_t k = 0; k < b.channels; ++k) dst[k] = regs[b.reg][int(k)];
+                }
+                break;
+            case InputTarget::Emission:
+                if (varying) {
+                    in.emission_reg = int32_t(b.reg);
+                    mat.emission = Color(0.f);  // per hit (Scene::shade); its triangles are lights (Scene::emission)
+                } else {
+                    mat.emission = vmax(regs[b.reg], Color(0.f));
+                }
+                break;
+            case InputTarget::Normal:
+                if (varying) {  // a constant normal input is ignored
+                    in.normal_reg = int32_t(b.reg);
+                    in.normal_is_displacement = b.column == 1;
+                }
+                break;
+            case InputTarget::Holdout:
+                if (varying) {
+                    in.holdout_reg = int32_t(b.reg);
+                } else if (holdout) {
+                    if (holdout->size() < materials.size()) holdout->resize(materials.size(), 0.f);
+                    (*holdout)[m] = holdout_weight(regs[b.reg]);
+                }
+                break;
+            case InputTarget::World: break;
             }
         }
         for (size_t c = 0; c < in.types.size(); ++c) sanitize_closure_row(in.rows.data() + c * stride);

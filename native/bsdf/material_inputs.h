@@ -28,14 +28,14 @@ struct MaterialInputs {
         uint32_t reg;       // program register
     };
     uint32_t program = 0;
-    std::vector<ClosureType> types;  // the material's closures
-    std::vector<float> rows;         // their rows (closure_columns() wide), constant inputs folded in
-    std::vector<Binding> bindings;   // the inputs that vary
-    int32_t emission_reg = -1;       // varying emitted radiance
-    int32_t normal_reg = -1;         // shading normal
+    std::vector<ClosureType> types;       // the material's closures
+    std::vector<float> rows;              // their rows (closure_columns() wide), constant inputs folded in
+    std::vector<Binding> bindings;        // the inputs that vary
+    int32_t emission_reg = -1;            // varying emitted radiance
+    int32_t normal_reg = -1;              // shading normal
     bool normal_is_displacement = false;  // it comes from the Displacement output (bump only), not a BSDF's Normal
                                           // input: the smooth normal itself moves (no bump shadowing, as Cycles)
-    int32_t holdout_reg = -1;        // varying Holdout weight
+    int32_t holdout_reg = -1;             // varying Holdout weight
 
     /// The closure rows with the program's registers applied.
     void apply(const Vec3* regs, float* rows_out) const;

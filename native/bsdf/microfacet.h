@@ -90,7 +90,7 @@ struct Microfacet {
         if (type == MicrofacetDistribution::GGX) return 0.5f * (std::sqrt(1.f + a2t2) - 1.f);
         if (a2t2 <= 0.f) return 0.f;
         const double a = 1.0 / std::sqrt(double(a2t2));  // 1/(α tanθ)
-        if (a > 6.0) return 0.f;                        // erfc(6) ≈ 2e-17: Λ underflows
+        if (a > 6.0) return 0.f;                         // erfc(6) ≈ 2e-17: Λ underflows
         return float(0.5 * (std::erf(a) - 1.0) + std::exp(-a * a) / (2.0 * a * 1.7724538509055159));
     }
     float G1(const Vec3& w) const { return 1.f / (1.f + Lambda(w)); }
@@ -148,7 +148,10 @@ private:
             const double value = norm * (1.0 + b + inv_sqrt_pi * tan_t * std::exp(-x * x)) - ux;
             const double deriv = norm * (1.0 - x * tan_t);
             if (std::fabs(value) < 1e-7) break;
-            if (value > 0.0) hi = b; else lo = b;
+            if (value > 0.0)
+                hi = b;
+            else
+                lo = b;
             b -= value / deriv;
         }
         return {erfinv(float(b)), erfinv(2.f * uy - 1.f)};

@@ -25,8 +25,7 @@ candela::Params::Value parse_value(const std::string& s) {
         if (used == s.size()) return static_cast<int64_t>(i);
         const double d = std::stod(s, &used);
         if (used == s.size()) return d;
-    } catch (const std::exception&) {
-    }
+    } catch (const std::exception&) {}
     return s;
 }
 
@@ -85,11 +84,13 @@ int main(int argc, char** argv) {
         candela::write_exr_rgba(output, session.width(), session.height(), rgba);
         const auto st = session.stats();
         if (!quiet)
-            std::printf("Candela: %dx%d, %d samples/pixel in %.3f s render (%.3f s build): %.0f samples/s, %.0f rays/s -> %s%s\n",
-                        session.width(), session.height(), int(session.progress().work_done), st.render_seconds,
-                        st.build_seconds, st.samples_per_second,
-                        st.render_seconds > 0 ? double(st.rays) / st.render_seconds : 0.0, output.c_str(),
-                        g_interrupted ? " (cancelled: partial image)" : "");
+            std::printf(
+                "Candela: %dx%d, %d samples/pixel in %.3f s render (%.3f s build): %.0f samples/s, %.0f rays/s -> "
+                "%s%s\n",
+                session.width(), session.height(), int(session.progress().work_done), st.render_seconds,
+                st.build_seconds, st.samples_per_second,
+                st.render_seconds > 0 ? double(st.rays) / st.render_seconds : 0.0, output.c_str(),
+                g_interrupted ? " (cancelled: partial image)" : "");
         return g_interrupted ? 130 : 0;
     } catch (const std::exception& e) {
         std::cerr << "error: " << e.what() << "\n";

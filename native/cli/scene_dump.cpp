@@ -80,28 +80,40 @@ void load_npy(SceneArrays& arrays, const std::string& key, const ArraySpec& spec
     const std::string kind = descr.size() >= 2 ? descr.substr(descr.size() - 2) : descr;
     if (descr[0] == '>') throw InvalidScene(file.string() + ": big-endian arrays are not supported");
     size_t elem = 0;
-    if (kind == "f4" || kind == "u4" || kind == "i4") elem = 4;
-    else if (kind == "f8" || kind == "i8" || kind == "u8") elem = 8;
-    else if (kind == "u1" || kind == "b1" || kind == "i1") elem = 1;
-    else throw InvalidScene(file.string() + ": unsupported dtype '" + descr + "'");
+    if (kind == "f4" || kind == "u4" || kind == "i4")
+        elem = 4;
+    else if (kind == "f8" || kind == "i8" || kind == "u8")
+        elem = 8;
+    else if (kind == "u1" || kind == "b1" || kind == "i1")
+        elem = 1;
+    else
+        throw InvalidScene(file.string() + ": unsupported dtype '" + descr + "'");
     if (bytes.size() < offset + n * elem) throw InvalidScene(file.string() + ": truncated data");
 
     auto put = [&](auto vec) { arrays.set(key, spec.type, shape, vec.data()); };
     auto dispatch = [&](auto to_tag) {
         using To = decltype(to_tag);
-        if (kind == "f4") put(convert_elements<float, To>(data, n));
-        else if (kind == "f8") put(convert_elements<double, To>(data, n));
-        else if (kind == "u4") put(convert_elements<uint32_t, To>(data, n));
-        else if (kind == "i4") put(convert_elements<int32_t, To>(data, n));
-        else if (kind == "i8") put(convert_elements<int64_t, To>(data, n));
-        else if (kind == "u8") put(convert_elements<uint64_t, To>(data, n));
-        else if (kind == "i1") put(convert_elements<int8_t, To>(data, n));
-        else put(convert_elements<uint8_t, To>(data, n));
+        if (kind == "f4")
+            put(convert_elements<float, To>(data, n));
+        else if (kind == "f8")
+            put(convert_elements<double, To>(data, n));
+        else if (kind == "u4")
+            put(convert_elements<uint32_t, To>(data, n));
+        else if (kind == "i4")
+            put(convert_elements<int32_t, To>(data, n));
+        else if (kind == "i8")
+            put(convert_elements<int64_t, To>(data, n));
+        else if (kind == "u8")
+            put(convert_elements<uint64_t, To>(data, n));
+        else if (kind == "i1")
+            put(convert_elements<int8_t, To>(data, n));
+        else
+            put(convert_elements<uint8_t, To>(data, n));
     };
     switch (spec.type) {
-        case ElemType::F32: dispatch(float{}); break;
-        case ElemType::U32: dispatch(uint32_t{}); break;
-        case ElemType::U8: dispatch(uint8_t{}); break;
+    case ElemType::F32: dispatch(float{}); break;
+    case ElemType::U32: dispatch(uint32_t{}); break;
+    case ElemType::U8: dispatch(uint8_t{}); break;
     }
 }
 
@@ -120,11 +132,16 @@ SceneDump read_scene_dump(const std::string& directory) {
     }
     if (!j.is_object()) throw InvalidParameter(params_file.string() + " must hold a JSON object");
     for (const auto& [key, v] : j.items()) {
-        if (v.is_boolean()) dump.params.set(key, v.get<bool>());
-        else if (v.is_number_integer()) dump.params.set(key, v.get<int64_t>());
-        else if (v.is_number()) dump.params.set(key, v.get<double>());
-        else if (v.is_string()) dump.params.set(key, v.get<std::string>());
-        else throw InvalidParameter(params_file.string() + ": parameter '" + key + "' must be a bool, number or string");
+        if (v.is_boolean())
+            dump.params.set(key, v.get<bool>());
+        else if (v.is_number_integer())
+            dump.params.set(key, v.get<int64_t>());
+        else if (v.is_number())
+            dump.params.set(key, v.get<double>());
+        else if (v.is_string())
+            dump.params.set(key, v.get<std::string>());
+        else
+            throw InvalidParameter(params_file.string() + ": parameter '" + key + "' must be a bool, number or string");
     }
     for (const auto& entry : fs::directory_iterator(dir)) {
         if (entry.path().extension() != ".npy") continue;

@@ -14,8 +14,7 @@ int resolve_thread_count(int threads) {
     return hw > 0 ? static_cast<int>(hw) : 1;
 }
 
-void parallel_for(int threads, size_t count, const std::function<void(size_t)>& body,
-                  const CancelToken* cancel) {
+void parallel_for(int threads, size_t count, const std::function<void(size_t)>& body, const CancelToken* cancel) {
     const int n = resolve_thread_count(threads);
     auto run_item = [&](size_t i) {
         if (cancel && cancel->cancelled()) return;

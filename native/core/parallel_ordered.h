@@ -44,18 +44,17 @@ void parallel_ordered(int threads, size_t count, size_t max_in_flight, Produce&&
     arena.execute([&] {
         tbb::parallel_pipeline(
             max_in_flight,
-            tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order,
-                                           [&](tbb::flow_control& fc) -> size_t {
-                                               if (next >= count || (cancel && cancel->cancelled())) {
-                                                   fc.stop();
-                                                   return 0;
-                                               }
-                                               return next++;
-                                           }) &
-                tbb::make_filter<size_t, Item>(tbb::filter_mode::parallel,
-                                               [&](size_t i) { return Item{i, std::optional<Result>(produce(i))}; }) &
-                tbb::make_filter<Item, void>(tbb::filter_mode::serial_in_order,
-                                             [&](Item item) { consume(item.index, std::move(*item.result)); }));
+            tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> size_t {
+                if (next >= count || (cancel && cancel->cancelled())) {
+                    fc.stop();
+                    return 0;
+                }
+                return next++;
+            }) & tbb::make_filter<size_t, Item>(tbb::filter_mode::parallel, [&](size_t i) {
+                return Item{i, std::optional<Result>(produce(i))};
+            }) & tbb::make_filter<Item, void>(tbb::filter_mode::serial_in_order, [&](Item item) {
+                consume(item.index, std::move(*item.result));
+            }));
     });
 }
 

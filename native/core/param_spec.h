@@ -28,14 +28,14 @@ struct ParamSpec {
     const char* key;
     const char* label;
     ParamType type;
-    double default_value = 0.0;  // Bool (0/1), Int, Float
-    double min = 0.0, max = 0.0;  // the accepted range (Int, Float), inclusive
-    double soft_max = 0.0;        // the UI slider's end (0: max)
+    double default_value = 0.0;     // Bool (0/1), Int, Float
+    double min = 0.0, max = 0.0;    // the accepted range (Int, Float), inclusive
+    double soft_max = 0.0;          // the UI slider's end (0: max)
     const char* default_item = "";  // Enum
     std::vector<EnumItem> items;    // Enum, in their stable order
     const char* description = "";
-    const char* group = "";       // the sub-panel section it is drawn in ("Light Paths", "Light Sampling")
-    const char* active_if = "";   // drawn greyed out unless this holds: "KEY==ID", "KEY!=ID" or "KEY>N"
+    const char* group = "";      // the sub-panel section it is drawn in ("Light Paths", "Light Sampling")
+    const char* active_if = "";  // drawn greyed out unless this holds: "KEY==ID", "KEY!=ID" or "KEY>N"
 };
 
 ParamSpec bool_param(const char* key, const char* label, bool def, const char* description, const char* group = "");

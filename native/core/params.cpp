@@ -11,10 +11,10 @@ namespace {
 
 const char* type_name(const Params::Value& v) {
     switch (v.index()) {
-        case 0: return "bool";
-        case 1: return "int";
-        case 2: return "float";
-        default: return "str";
+    case 0: return "bool";
+    case 1: return "int";
+    case 2: return "float";
+    default: return "str";
     }
 }
 
@@ -32,10 +32,14 @@ T convert(const std::string& key, const Params::Value& v) {
         return fail("a bool");
     } else if constexpr (std::is_integral_v<T>) {
         int64_t i = 0;
-        if (auto p = std::get_if<int64_t>(&v)) i = *p;
-        else if (auto b = std::get_if<bool>(&v)) i = *b ? 1 : 0;
-        else if (auto d = std::get_if<double>(&v); d && std::floor(*d) == *d && std::fabs(*d) < 9e15) i = static_cast<int64_t>(*d);
-        else return fail("an integer");
+        if (auto p = std::get_if<int64_t>(&v))
+            i = *p;
+        else if (auto b = std::get_if<bool>(&v))
+            i = *b ? 1 : 0;
+        else if (auto d = std::get_if<double>(&v); d && std::floor(*d) == *d && std::fabs(*d) < 9e15)
+            i = static_cast<int64_t>(*d);
+        else
+            return fail("an integer");
         if (i < static_cast<int64_t>(std::numeric_limits<T>::min()) ||
             i > static_cast<int64_t>(std::numeric_limits<T>::max()))
             throw InvalidParameter("parameter '" + key + "' = " + std::to_string(i) + " is out of range");
@@ -43,9 +47,12 @@ T convert(const std::string& key, const Params::Value& v) {
     } else {
         static_assert(std::is_floating_point_v<T>);
         double d = 0.0;
-        if (auto p = std::get_if<double>(&v)) d = *p;
-        else if (auto i = std::get_if<int64_t>(&v)) d = static_cast<double>(*i);
-        else return fail("a number");
+        if (auto p = std::get_if<double>(&v))
+            d = *p;
+        else if (auto i = std::get_if<int64_t>(&v))
+            d = static_cast<double>(*i);
+        else
+            return fail("a number");
         if (!std::isfinite(d)) throw InvalidParameter("parameter '" + key + "' is not finite");
         return static_cast<T>(d);
     }
@@ -92,8 +99,8 @@ const std::map<std::string, Params::Value> Params::values() const {
     return out;
 }
 
-#define CANDELA_PARAMS_INSTANTIATE(T)                                   \
-    template T Params::get<T>(const std::string&, const T&) const;     \
+#define CANDELA_PARAMS_INSTANTIATE(T)                              \
+    template T Params::get<T>(const std::string&, const T&) const; \
     template T Params::require<T>(const std::string&) const;
 CANDELA_PARAMS_INSTANTIATE(bool)
 CANDELA_PARAMS_INSTANTIATE(int)

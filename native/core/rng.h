@@ -33,7 +33,9 @@ inline uint32_t hash32(uint32_t x) {
 inline uint64_t rotl64(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
 
 /// Hash of several integers, order-sensitive.
-inline uint64_t hash_combine(uint64_t a, uint64_t b) { return mix64(a ^ (mix64(b) + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2))); }
+inline uint64_t hash_combine(uint64_t a, uint64_t b) {
+    return mix64(a ^ (mix64(b) + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2)));
+}
 inline uint64_t hash_values(uint64_t a, uint64_t b, uint64_t c) { return hash_combine(hash_combine(mix64(a), b), c); }
 
 class Pcg32 {

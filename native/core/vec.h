@@ -27,10 +27,30 @@ struct Vec3 {
     float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 
-    Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-    Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-    Vec3& operator*=(const Vec3& o) { x *= o.x; y *= o.y; z *= o.z; return *this; }
-    Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+    Vec3& operator+=(const Vec3& o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
+    Vec3& operator-=(const Vec3& o) {
+        x -= o.x;
+        y -= o.y;
+        z -= o.z;
+        return *this;
+    }
+    Vec3& operator*=(const Vec3& o) {
+        x *= o.x;
+        y *= o.y;
+        z *= o.z;
+        return *this;
+    }
+    Vec3& operator*=(float s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
     Vec3& operator/=(float s) { return *this *= (1.f / s); }
 };
 
@@ -52,16 +72,10 @@ inline float length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(const Vec3& a) { return a / length(a); }
 inline float max_component(const Vec3& a) { return max_num(a.x, max_num(a.y, a.z)); }
 inline float min_component(const Vec3& a) { return min_num(a.x, min_num(a.y, a.z)); }
-inline Vec3 vmin(const Vec3& a, const Vec3& b) {
-    return {min_num(a.x, b.x), min_num(a.y, b.y), min_num(a.z, b.z)};
-}
-inline Vec3 vmax(const Vec3& a, const Vec3& b) {
-    return {max_num(a.x, b.x), max_num(a.y, b.y), max_num(a.z, b.z)};
-}
+inline Vec3 vmin(const Vec3& a, const Vec3& b) { return {min_num(a.x, b.x), min_num(a.y, b.y), min_num(a.z, b.z)}; }
+inline Vec3 vmax(const Vec3& a, const Vec3& b) { return {max_num(a.x, b.x), max_num(a.y, b.y), max_num(a.z, b.z)}; }
 inline Vec3 vabs(const Vec3& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
-inline bool is_finite(const Vec3& a) {
-    return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
-}
+inline bool is_finite(const Vec3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 inline bool is_black(const Vec3& a) { return a.x == 0.f && a.y == 0.f && a.z == 0.f; }
 /// Flip v to the hemisphere of n.
 inline Vec3 face_forward(const Vec3& v, const Vec3& n) { return dot(v, n) < 0.f ? -v : v; }

@@ -82,8 +82,7 @@ std::map<std::string, std::vector<float>> read_exr_channels(const std::string& p
         for (auto& [name, buf] : top_down) {
             std::vector<float>& o = out[name];
             o.resize(buf.size());
-            for (int y = 0; y < h; ++y)
-                std::copy_n(buf.data() + size_t(h - 1 - y) * w, w, o.data() + size_t(y) * w);
+            for (int y = 0; y < h; ++y) std::copy_n(buf.data() + size_t(h - 1 - y) * w, w, o.data() + size_t(y) * w);
         }
         *width = w;
         *height = h;

@@ -42,8 +42,10 @@ void Film::add_splats(const SplatBuffer& buffer, const PixelFilter& filter,
     for (const SplatBuffer::Entry& e : buffer.entries()) {
         if (!(e.replicate < k_noise_replicates) || !is_finite(e.value)) continue;
         const float fx = e.x - float(m_origin_x), fy = e.y - float(m_origin_y);  // film coordinates
-        const int x0 = std::max(0, int(std::ceil(fx - half - 0.5f))), x1 = std::min(m_width - 1, int(std::floor(fx + half - 0.5f)));
-        const int y0 = std::max(0, int(std::ceil(fy - half - 0.5f))), y1 = std::min(m_height - 1, int(std::floor(fy + half - 0.5f)));
+        const int x0 = std::max(0, int(std::ceil(fx - half - 0.5f))),
+                  x1 = std::min(m_width - 1, int(std::floor(fx + half - 0.5f)));
+        const int y0 = std::max(0, int(std::ceil(fy - half - 0.5f))),
+                  y1 = std::min(m_height - 1, int(std::floor(fy + half - 0.5f)));
         if (x0 > x1 || y0 > y1 || x1 - x0 >= k_max_span || y1 - y0 >= k_max_span) continue;
         float wx[k_max_span], wy[k_max_span];
         for (int x = x0; x <= x1; ++x) wx[x - x0] = filter.pdf(fx - (float(x) + 0.5f));
@@ -141,8 +143,10 @@ Film::NoiseEstimate Film::noise_estimate() const {
         for (int y = t.y0; y < t.y1; ++y)
             for (int x = t.x0; x < t.x1; ++x) {
                 const size_t i = size_t(y) * m_width + x;
-                if (splats) tally.add(m_pixels[i], m_splats[i], m_splat_samples);
-                else tally.add(m_pixels[i]);
+                if (splats)
+                    tally.add(m_pixels[i], m_splats[i], m_splat_samples);
+                else
+                    tally.add(m_pixels[i]);
             }
     });
     return tally.result();

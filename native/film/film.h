@@ -29,7 +29,7 @@ namespace candela {
 
 struct PixelAccum {
     double r = 0, g = 0, b = 0, a = 0;
-    double lum_sq = 0;  // Σ luminance² (running moments: the shape of the per-pixel noise)
+    double lum_sq = 0;                        // Σ luminance² (running moments: the shape of the per-pixel noise)
     double rep_lum[k_noise_replicates] = {};  // Σ luminance per replicate (noise_estimate.h)
     uint32_t rep_n[k_noise_replicates] = {};
     uint32_t n = 0;
@@ -47,7 +47,12 @@ struct PixelAccum {
         ++n;
     }
     void add(const PixelAccum& o) {
-        r += o.r; g += o.g; b += o.b; a += o.a; lum_sq += o.lum_sq; n += o.n;
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        a += o.a;
+        lum_sq += o.lum_sq;
+        n += o.n;
         for (uint32_t k = 0; k < k_noise_replicates; ++k) {
             rep_lum[k] += o.rep_lum[k];
             rep_n[k] += o.rep_n[k];

@@ -63,7 +63,8 @@ double replicate_variance_of_mean(const PixelAccum& p);
 /// mean plus its splats' luminance over its splat samples N_r, m_r = cam_r + S_r/N_r, and the replicates are
 /// weighted by their camera sample counts (by N_r where the pixel has no camera samples). Splatted light then
 /// counts in the estimate as long as each replicate's splats come only from that replicate's samples.
-double replicate_variance_of_mean(const PixelAccum& p, const SplatAccum& s, const double (&splat_samples)[k_noise_replicates]);
+double replicate_variance_of_mean(const PixelAccum& p, const SplatAccum& s,
+                                  const double (&splat_samples)[k_noise_replicates]);
 /// s²/n from the running moments (independent-sample formula); 0 below two samples.
 double moment_variance_of_mean(const PixelAccum& p);
 
@@ -76,11 +77,11 @@ public:
 
 private:
     size_t m_pixels = 0;
-    bool m_complete = true;        // every pixel has every replicate
-    double m_lum = 0.0;            // Σ pixel mean luminance
-    double m_var = 0.0;            // Σ replicate variance of the mean
-    double m_var_sq = 0.0;         // Σ (replicate variance of the mean)²
-    double m_moment_var = 0.0;     // Σ s²/n
+    bool m_complete = true;     // every pixel has every replicate
+    double m_lum = 0.0;         // Σ pixel mean luminance
+    double m_var = 0.0;         // Σ replicate variance of the mean
+    double m_var_sq = 0.0;      // Σ (replicate variance of the mean)²
+    double m_moment_var = 0.0;  // Σ s²/n
 };
 
 }  // namespace candela

@@ -15,8 +15,13 @@ const std::vector<std::string>& PixelFilter::names() {
 }
 
 PixelFilter::PixelFilter(const std::string& name, float width)
-    : m_kind(name == "GAUSSIAN" ? Kind::Gaussian : name == "BLACKMAN_HARRIS" ? Kind::BlackmanHarris : Kind::Box),
-      m_width(width), m_support(width * (name == "GAUSSIAN" ? 3.f : name == "BLACKMAN_HARRIS" ? 2.f : 1.f)) {
+    : m_kind(name == "GAUSSIAN"          ? Kind::Gaussian
+             : name == "BLACKMAN_HARRIS" ? Kind::BlackmanHarris
+                                         : Kind::Box),
+      m_width(width),
+      m_support(width * (name == "GAUSSIAN"          ? 3.f
+                         : name == "BLACKMAN_HARRIS" ? 2.f
+                                                     : 1.f)) {
     bool known = false;
     for (const auto& n : names()) known |= n == name;
     if (!known) throw InvalidParameter("unknown pixel_filter '" + name + "' (BOX, GAUSSIAN, BLACKMAN_HARRIS)");
@@ -60,7 +65,8 @@ float PixelFilter::pdf(float x) const {
     if (m_kind == Kind::Box) return 1.f / m_support;
     // sample_1d maps u ∈ [i, i+1]/N linearly onto [inv[i], inv[i+1]]: density (1/N)/(inv[i+1] − inv[i]) there.
     const auto it = std::upper_bound(m_inverse_cdf.begin(), m_inverse_cdf.end(), x);
-    const size_t i = std::min(size_t(std::max<std::ptrdiff_t>(it - m_inverse_cdf.begin() - 1, 0)), size_t(k_inverse_size - 1));
+    const size_t i =
+        std::min(size_t(std::max<std::ptrdiff_t>(it - m_inverse_cdf.begin() - 1, 0)), size_t(k_inverse_size - 1));
     const float width = m_inverse_cdf[i + 1] - m_inverse_cdf[i];
     return width > 0.f ? (1.f / k_inverse_size) / width : 0.f;
 }

@@ -1,5 +1,5 @@
-#include <algorithm>
 #include "input/scene_arrays.h"
+#include <algorithm>
 
 #include <cmath>
 #include <cstring>
@@ -59,9 +59,9 @@ const ArraySpec* find_array_spec(const std::string& name) {
 size_t element_size(ElemType t) { return t == ElemType::U8 ? 1 : 4; }
 const char* elem_type_name(ElemType t) {
     switch (t) {
-        case ElemType::F32: return "float32";
-        case ElemType::U32: return "uint32";
-        default: return "uint8";
+    case ElemType::F32: return "float32";
+    case ElemType::U32: return "uint32";
+    default: return "uint8";
     }
 }
 
@@ -126,7 +126,8 @@ size_t SceneArrays::byte_size() const {
 
 void SceneArrays::validate() const {
     for (const auto& spec : array_schema())
-        if (spec.required && !has(spec.name)) throw InvalidScene(std::string("scene array '") + spec.name + "' is missing");
+        if (spec.required && !has(spec.name))
+            throw InvalidScene(std::string("scene array '") + spec.name + "' is missing");
 
     const size_t V = rows("positions"), T = rows("triangles"), K = rows("material_type");
     const size_t M1 = rows("mesh_tri_start"), I = rows("instance_mesh");
@@ -177,8 +178,8 @@ void SceneArrays::validate() const {
     const uint32_t* mat = get("tri_material").data<uint32_t>();
     for (size_t i = 0; i < T; ++i)
         if (mat[i] >= K)
-            throw InvalidScene("tri_material[" + std::to_string(i) + "] = " + std::to_string(mat[i]) + " but there are only " +
-                               std::to_string(K) + " materials");
+            throw InvalidScene("tri_material[" + std::to_string(i) + "] = " + std::to_string(mat[i]) +
+                               " but there are only " + std::to_string(K) + " materials");
     if (rows("materials") != K)
         throw InvalidScene("'materials' has " + std::to_string(rows("materials")) + " rows but 'material_type' has " +
                            std::to_string(K));
@@ -202,15 +203,16 @@ void SceneArrays::validate() const {
         if (im[i] + 1 >= M1)
             throw InvalidScene("instance_mesh[" + std::to_string(i) + "] = " + std::to_string(im[i]) +
                                " but there are only " + std::to_string(M1 - 1) + " meshes");
-    for (const char* name : {"instance_flags", "instance_pass_index", "instance_color", "instance_random",
-                             "instance_terminator"})
+    for (const char* name :
+         {"instance_flags", "instance_pass_index", "instance_color", "instance_random", "instance_terminator"})
         if (has(name) && rows(name) != I)
             throw InvalidScene(std::string("scene array '") + name + "' has " + std::to_string(rows(name)) +
                                " rows, expected " + std::to_string(I) + " (one per instance)");
     if (const Array* f = find("instance_flags"))
         for (size_t i = 0; i < I; ++i)
             if (f->data<uint8_t>()[i] > 63)
-                throw InvalidScene("instance_flags[" + std::to_string(i) + "] = " + std::to_string(f->data<uint8_t>()[i]) +
+                throw InvalidScene("instance_flags[" + std::to_string(i) +
+                                   "] = " + std::to_string(f->data<uint8_t>()[i]) +
                                    " has unknown bits (capabilities()['instance_flags'] lists them)");
     if (has("instance_color")) check_finite(get("instance_color"), "instance_color", 4);
     if (has("instance_random")) check_finite(get("instance_random"), "instance_random", 1);

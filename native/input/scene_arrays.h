@@ -31,7 +31,9 @@ struct Array {
 
     size_t count() const;  // number of elements
     template <typename T>
-    const T* data() const { return reinterpret_cast<const T*>(bytes.data()); }
+    const T* data() const {
+        return reinterpret_cast<const T*>(bytes.data());
+    }
 };
 
 class SceneArrays {
@@ -46,7 +48,10 @@ public:
     /// Checks presence, cross-array sizes, index ranges and finiteness; throws InvalidScene.
     void validate() const;
 
-    size_t rows(const std::string& name) const { const Array* a = find(name); return a ? a->shape[0] : 0; }
+    size_t rows(const std::string& name) const {
+        const Array* a = find(name);
+        return a ? a->shape[0] : 0;
+    }
     size_t byte_size() const;
 
 private:

@@ -19,10 +19,14 @@ Color closure_albedo(const Bsdf& bsdf, const Vec3& wo_local) {
         sum += std::visit(
             [&](const auto& lobe) -> Color {
                 using T = std::decay_t<decltype(lobe)>;
-                if constexpr (std::is_same_v<T, TransparentBsdf>) return Color(0.f);
-                else if constexpr (std::is_same_v<T, MicrofacetReflection>) return wl.weight * lobe.fresnel.eval(wo_local.z);
-                else if constexpr (std::is_same_v<T, ClearcoatBsdf>) return wl.weight * lobe.albedo(wo_local);
-                else return wl.weight;
+                if constexpr (std::is_same_v<T, TransparentBsdf>)
+                    return Color(0.f);
+                else if constexpr (std::is_same_v<T, MicrofacetReflection>)
+                    return wl.weight * lobe.fresnel.eval(wo_local.z);
+                else if constexpr (std::is_same_v<T, ClearcoatBsdf>)
+                    return wl.weight * lobe.albedo(wo_local);
+                else
+                    return wl.weight;
             },
             wl.lobe);
     }

@@ -27,9 +27,10 @@ namespace candela {
 template <class Tracer, class = void>
 struct traces_from_hit : std::false_type {};
 template <class Tracer>
-struct traces_from_hit<Tracer, std::void_t<decltype(std::declval<const Tracer&>().Li(
-                                   std::declval<const Ray&>(), std::declval<const TracedHit&>(), std::declval<Sampler&>(),
-                                   std::declval<PathStats&>(), static_cast<float*>(nullptr), static_cast<AovSample*>(nullptr)))>>
+struct traces_from_hit<
+    Tracer, std::void_t<decltype(std::declval<const Tracer&>().Li(
+                std::declval<const Ray&>(), std::declval<const TracedHit&>(), std::declval<Sampler&>(),
+                std::declval<PathStats&>(), static_cast<float*>(nullptr), static_cast<AovSample*>(nullptr)))>>
     : std::true_type {};
 
 /// The largest pass of a camera render. Each pass ends at a barrier (the last tile's thread finishes alone) and
@@ -53,9 +54,10 @@ struct SplatSink {
 template <class Tracer, class = void>
 struct splats_from_camera : std::false_type {};
 template <class Tracer>
-struct splats_from_camera<Tracer, std::void_t<decltype(std::declval<const Tracer&>().Li(
-                                      std::declval<const Ray&>(), std::declval<Sampler&>(), std::declval<PathStats&>(),
-                                      static_cast<float*>(nullptr), static_cast<AovSample*>(nullptr), std::declval<SplatSink>()))>>
+struct splats_from_camera<
+    Tracer, std::void_t<decltype(std::declval<const Tracer&>().Li(
+                std::declval<const Ray&>(), std::declval<Sampler&>(), std::declval<PathStats&>(),
+                static_cast<float*>(nullptr), static_cast<AovSample*>(nullptr), std::declval<SplatSink>()))>>
     : std::true_type {};
 
 /// One pass [begin, end) of camera samples over one tile at a time, for Tracer: `Color Li(const Ray&, Sampler&,
@@ -65,7 +67,12 @@ template <typename Tracer>
 class CameraTilePass {
 public:
     CameraTilePass(const Scene& scene, Film& film, RenderContext& ctx, const PixelSampling& ps, const Tracer& tracer)
-        : m_scene(scene), m_camera(scene.camera()), m_film(film), m_ctx(ctx), m_ps(ps), m_tracer(tracer),
+        : m_scene(scene),
+          m_camera(scene.camera()),
+          m_film(film),
+          m_ctx(ctx),
+          m_ps(ps),
+          m_tracer(tracer),
           m_aovs(ctx.aovs && !ctx.aovs->empty() ? ctx.aovs : nullptr) {}
 
     /// Renders samples [begin, end) of every pixel of tile `tile_index` and adds them to the film; a splatting tracer's
@@ -103,12 +110,13 @@ private:
     /// s mod k_noise_replicates = r): each replicate's sampler then sees its samples of the pixel as one run,
     /// which is what its per-pixel caches (Sobol seeds) amortise over. Only the order of the film's sums changes
     /// with this, not which samples are taken.
-    __attribute__((always_inline)) void render_pixel(int fx, int fy, int begin, int end, std::vector<Sampler>& replicates,
-                                                     PathStats& stats, PixelAccum& acc, AovAccum* aov_acc,
-                                                     SplatBuffer* splats) const {
+    __attribute__((always_inline)) void render_pixel(int fx, int fy, int begin, int end,
+                                                     std::vector<Sampler>& replicates, PathStats& stats,
+                                                     PixelAccum& acc, AovAccum* aov_acc, SplatBuffer* splats) const {
         for (int first = begin; first < std::min(end, begin + int(k_noise_replicates)); ++first)
             for (int s0 = first; s0 < end; s0 += k_group_size * int(k_noise_replicates))
-                render_group(fx, fy, s0, end, replicates[noise_replicate_of(uint32_t(s0))], stats, acc, aov_acc, splats);
+                render_group(fx, fy, s0, end, replicates[noise_replicate_of(uint32_t(s0))], stats, acc, aov_acc,
+                             splats);
     }
 
     /// Camera rays go to Embree in groups of up to eight consecutive samples of one replicate (s0, s0 + B, …;
@@ -116,8 +124,9 @@ private:
     /// times faster than one by one. The group's rays are made first, then each path is traced with its sampler
     /// positioned again at its own sample (positioning is cheap within a pixel; the path draws only per-bounce
     /// dimensions after the camera's).
-    __attribute__((always_inline)) void render_group(int fx, int fy, int s0, int end, Sampler& sampler, PathStats& stats,
-                                                     PixelAccum& acc, AovAccum* aov_acc, SplatBuffer* splats) const {
+    __attribute__((always_inline)) void render_group(int fx, int fy, int s0, int end, Sampler& sampler,
+                                                     PathStats& stats, PixelAccum& acc, AovAccum* aov_acc,
+                                                     SplatBuffer* splats) const {
         const uint32_t replicate = noise_replicate_of(uint32_t(s0));
         Ray rays[k_group_size];
         int samples[k_group_size];
@@ -133,17 +142,21 @@ private:
             // Position the sampler at this sample again, even the group's last (the one it was left at): tracing
             // the earlier paths moved its per-sample state (the Sobol batch drawn ahead).
             if (n > 1)
-                std::visit([&](auto& concrete) {
-                    concrete.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
-                }, sampler);
+                std::visit(
+                    [&](auto& concrete) {
+                        concrete.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
+                    },
+                    sampler);
             float alpha = 1.f;
             AovSample aov;
             AovSample* const aov_out = m_aovs ? &aov : nullptr;
             Color L;
-            if constexpr (k_group_size > 1) L = m_tracer.Li(rays[j], hits[j], sampler, stats, &alpha, aov_out);
+            if constexpr (k_group_size > 1)
+                L = m_tracer.Li(rays[j], hits[j], sampler, stats, &alpha, aov_out);
             else if constexpr (splats_from_camera<Tracer>::value)
                 L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out, SplatSink{splats, replicate, fx, fy});
-            else L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out);
+            else
+                L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out);
             ++stats.paths;
             acc.add(checked_radiance(L, fx, fy, s, stats), alpha, replicate);
             if (aov_acc) aov_acc->add(aov, s == 0);

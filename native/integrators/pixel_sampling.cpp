@@ -12,14 +12,15 @@ const std::vector<ParamSpec>& common_param_specs() {
     static const std::vector<ParamSpec> specs = {
         int_param("samples", "Samples", 64, 1, 1 << 24, "Samples per pixel (the integrator's unit of work)", "", 4096),
         int_param("seed", "Seed", 0, 0, 2147483647, "The image depends only on the seed, pixel and sample index"),
-        enum_param("sampler", "Sampler", "SOBOL",
-                   {{"RANDOM", "Random", "Independent uniform random samples"},
-                    {"STRATIFIED", "Stratified (jittered)", "One jittered sample per stratum, strata shuffled per dimension"},
-                    {"NROOKS", "N-Rooks", "Latin hypercube: one sample per row and per column of every 2-D dimension"},
-                    {"HALTON", "Halton", "Halton sequence (prime bases), Owen-scrambled per pixel"},
-                    {"HAMMERSLEY", "Hammersley", "Hammersley point set for the sample count, Owen-scrambled per pixel"},
-                    {"SOBOL", "Sobol (Owen)", "Owen-scrambled, shuffled Sobol (0,2)-sequence per dimension pair"}},
-                   "Pattern of the sample values drawn per pixel"),
+        enum_param(
+            "sampler", "Sampler", "SOBOL",
+            {{"RANDOM", "Random", "Independent uniform random samples"},
+             {"STRATIFIED", "Stratified (jittered)", "One jittered sample per stratum, strata shuffled per dimension"},
+             {"NROOKS", "N-Rooks", "Latin hypercube: one sample per row and per column of every 2-D dimension"},
+             {"HALTON", "Halton", "Halton sequence (prime bases), Owen-scrambled per pixel"},
+             {"HAMMERSLEY", "Hammersley", "Hammersley point set for the sample count, Owen-scrambled per pixel"},
+             {"SOBOL", "Sobol (Owen)", "Owen-scrambled, shuffled Sobol (0,2)-sequence per dimension pair"}},
+            "Pattern of the sample values drawn per pixel"),
         enum_param("pixel_filter", "Pixel Filter", "BLACKMAN_HARRIS",
                    {{"BOX", "Box", "Box filter: every sample counts fully inside one pixel"},
                     {"GAUSSIAN", "Gaussian", "Gaussian filter"},
@@ -36,12 +37,14 @@ const std::vector<ParamSpec>& common_param_specs() {
                     "smooth"),
         float_param("time_limit", "Time Limit", 0.0, 0.0, 1e9,
                     "Stop rendering after this many seconds (after export and scene build), even if not all samples "
-                    "are done; 0 = no limit. Renders then differ between machines", "", 3600.0),
+                    "are done; 0 = no limit. Renders then differ between machines",
+                    "", 3600.0),
         float_param("noise_threshold", "Image Noise Stop", 0.0, 0.0, 0.5,
                     "Stop the whole render once the estimated relative error (RMSE / mean) of the whole image is below "
                     "this, with a confidence margin; 0 = off. Checked from 16 samples per pixel on. Not Cycles' Noise "
                     "Threshold, which is per-pixel adaptive sampling (typically 0.01): here 0.01 asks for 1 % error "
-                    "over the whole image, a long render", "", 0.1),
+                    "over the whole image, a long render",
+                    "", 0.1),
     };
     return specs;
 }

@@ -14,15 +14,15 @@
 namespace candela {
 
 struct PixelSampling {
-    int samples = 64;              // the budget in the integrator's unit (camera samples per pixel for PATH)
+    int samples = 64;  // the budget in the integrator's unit (camera samples per pixel for PATH)
     uint64_t seed = 0;
     std::string sampler = "SOBOL";
     PixelFilter filter{"BLACKMAN_HARRIS", 1.5f};
     bool film_transparent = false;
-    bool transparent_glass = false;    // Film > Transparent Glass: the background stays transparent through smooth
+    bool transparent_glass = false;      // Film > Transparent Glass: the background stays transparent through smooth
     float transparent_roughness = 0.1f;  // refractions of α up to this (Cycles' roughness threshold)
-    double time_limit = 0.0;       // seconds of rendering (after the scene is built); 0 = no limit
-    double noise_threshold = 0.0;  // stop once the estimated relative RMSE is below it; 0 = off
+    double time_limit = 0.0;             // seconds of rendering (after the scene is built); 0 = no limit
+    double noise_threshold = 0.0;        // stop once the estimated relative RMSE is below it; 0 = off
 
     static PixelSampling from_params(const Params& params);
 

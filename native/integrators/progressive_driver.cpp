@@ -52,8 +52,10 @@ StopReason run_progressive(RenderContext& ctx, const ProgressivePlan& plan, cons
         pass_size = std::min(pass_size * 2, max_pass);
         if (done == 1) pass_size = 1;
     }
-    if (ctx.cancel.cancelled()) stop = StopReason::Cancelled;
-    else if (stop == StopReason::Running) stop = StopReason::Samples;
+    if (ctx.cancel.cancelled())
+        stop = StopReason::Cancelled;
+    else if (stop == StopReason::Running)
+        stop = StopReason::Samples;
     ctx.counters.stop_reason = int(stop);
     return stop;
 }

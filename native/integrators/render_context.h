@@ -80,9 +80,9 @@ struct RenderCounters {
     // pixel, iterations, mutations per pixel: Integrator::budget()).
     std::atomic<int64_t> work_done{0};
     std::atomic<int64_t> work_total{0};
-    std::atomic<uint64_t> paths{0};     // camera paths traced (or the integrator's paths: light paths, photons)
-    std::atomic<uint64_t> rays{0};      // rays cast (camera, bounce and shadow rays)
-    std::atomic<uint64_t> nan_samples{0};  // non-finite or negative samples dropped before the film
+    std::atomic<uint64_t> paths{0};            // camera paths traced (or the integrator's paths: light paths, photons)
+    std::atomic<uint64_t> rays{0};             // rays cast (camera, bounce and shadow rays)
+    std::atomic<uint64_t> nan_samples{0};      // non-finite or negative samples dropped before the film
     std::atomic<double> relative_error{-1.0};  // estimated relative RMSE of the image; < 0 = not known (yet)
     std::atomic<int> stop_reason{int(StopReason::Running)};
     StageProgress stage;
@@ -91,11 +91,11 @@ struct RenderCounters {
 
 inline const char* stop_reason_name(StopReason r) {
     switch (r) {
-        case StopReason::Running: return "";
-        case StopReason::Samples: return "samples";
-        case StopReason::TimeLimit: return "time limit";
-        case StopReason::NoiseThreshold: return "noise threshold";
-        default: return "cancelled";
+    case StopReason::Running: return "";
+    case StopReason::Samples: return "samples";
+    case StopReason::TimeLimit: return "time limit";
+    case StopReason::NoiseThreshold: return "noise threshold";
+    default: return "cancelled";
     }
 }
 
@@ -103,7 +103,7 @@ struct RenderContext {
     const CancelToken& cancel;
     RenderCounters& counters;
     int threads = 0;
-    AovFilm* aovs = nullptr;      // data passes to write (camera-driven integrators), or none
+    AovFilm* aovs = nullptr;         // data passes to write (camera-driven integrators), or none
     MessageLog* messages = nullptr;  // where log() goes (Session::take_log), or nowhere
 
     /// A line for the user's log (Blender's Info editor and status bar).

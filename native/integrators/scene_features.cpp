@@ -22,7 +22,8 @@ std::string unhonoured_features_note(const std::string& integrator, uint32_t hon
     note(k_feature_bump_shadowing, scene.has_bent_normals(),
          "the bump shadowing term at Bump and Normal Map normals is not applied everywhere (its images of bumped "
          "surfaces are brighter toward the terminator than PATH's)");
-    note(k_feature_motion_blur, scene.has_motion(), "motion blur is not rendered: everything is at the shutter's middle");
+    note(k_feature_motion_blur, scene.has_motion(),
+         "motion blur is not rendered: everything is at the shutter's middle");
     return what.empty() ? std::string() : integrator + ": " + what;
 }
 

@@ -19,8 +19,8 @@ namespace candela {
 
 struct AreaLight {
     Vec3 center;
-    Vec3 u, v;       // full edge vectors (rectangle) or diameters (ellipse)
-    Vec3 normal;     // emitting side
+    Vec3 u, v;    // full edge vectors (rectangle) or diameters (ellipse)
+    Vec3 normal;  // emitting side
     Color radiance;
     bool ellipse = false;
     bool visible_camera = false;
@@ -58,9 +58,7 @@ struct AreaLight {
     SphericalRectangle spherical_rectangle(const Vec3& p) const {
         return SphericalRectangle::make(p, center - u * 0.5f - v * 0.5f, u, v);
     }
-    bool rectangular() const {
-        return !ellipse && std::fabs(dot(u, v)) <= 1e-4f * length(u) * length(v);
-    }
+    bool rectangular() const { return !ellipse && std::fabs(dot(u, v)) <= 1e-4f * length(u) * length(v); }
 
     LightSample sample_li(const LightSampleContext& ctx, Vec2 s2, LightPdfMode mode) const {
         if (mode == LightPdfMode::Area || !rectangular()) return sample_li(ctx, s2);

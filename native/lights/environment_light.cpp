@@ -47,7 +47,8 @@ uint32_t sub_samples(uint32_t texels, uint32_t cells) {
 
 }  // namespace
 
-EnvironmentMap::EnvironmentMap(std::shared_ptr<const ShaderLibrary> shaders, uint32_t program, uint32_t reg, int threads)
+EnvironmentMap::EnvironmentMap(std::shared_ptr<const ShaderLibrary> shaders, uint32_t program, uint32_t reg,
+                               int threads)
     : m_shaders(std::move(shaders)), m_program(program), m_reg(reg) {
     uint32_t image_w = 0, image_h = 0;
     image_size(*m_shaders, m_program, &image_w, &image_h);
@@ -69,8 +70,8 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const ShaderLibrary> shaders, uin
                 const float v = float((double(j) + (b + 0.5) / sv) / nv);
                 const float sin_theta = std::sin(k_pi * (1.f - v));
                 // Sub-cell solid angle: θ from π(1 − v1) to π(1 − v0).
-                const double solid_angle = 2.0 * k_pi / (double(nu) * su) *
-                                           (std::cos(k_pi * (1.0 - v1)) - std::cos(k_pi * (1.0 - v0)));
+                const double solid_angle =
+                    2.0 * k_pi / (double(nu) * su) * (std::cos(k_pi * (1.0 - v1)) - std::cos(k_pi * (1.0 - v0)));
                 for (uint32_t a = 0; a < su; ++a) {
                     const float u = float((double(i) + (a + 0.5) / su) / nu);
                     const Color c = Le(equirectangular_to_direction(u, v));
@@ -107,13 +108,15 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const ShaderLibrary> shaders, uin
             for (int a = 0; a < k_per_ring; ++a) {
                 // Equal-area rings of the cone.
                 const float cos_t = 1.f - (float(r) + 0.5f) / k_rings * (1.f - m_sun_cos);
-                const float sin_t = std::sqrt(std::fmax(1.f - cos_t * cos_t, 0.f)), phi = 2.f * k_pi * (float(a) + 0.5f) / k_per_ring;
+                const float sin_t = std::sqrt(std::fmax(1.f - cos_t * cos_t, 0.f)),
+                            phi = 2.f * k_pi * (float(a) + 0.5f) / k_per_ring;
                 sum += Le(frame.to_world(Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t)));
             }
         const Color sun_mean = sum / float(k_rings * k_per_ring) * (solid_angle / (4.f * k_pi));
         const float sun_power = luminance(sun_mean), map_power = luminance(m_mean);
         m_mean += sun_mean;
-        if (sun_power > 0.f) m_sun_q = m_distribution.nu() == 0 ? 1.f : clamp(sun_power / (sun_power + map_power), 0.05f, 0.95f);
+        if (sun_power > 0.f)
+            m_sun_q = m_distribution.nu() == 0 ? 1.f : clamp(sun_power / (sun_power + map_power), 0.05f, 0.95f);
     }
 }
 

@@ -28,8 +28,10 @@ inline LightSample light_sample_li(const Light& l, const LightSampleContext& ctx
     return std::visit(
         [&](const auto& x) -> LightSample {
             using T = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>) return x.sample_li(ctx, u, mode);
-            else return x.sample_li(ctx, u);
+            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>)
+                return x.sample_li(ctx, u, mode);
+            else
+                return x.sample_li(ctx, u);
         },
         l);
 }
@@ -39,9 +41,12 @@ inline float light_pdf_li(const Light& l, const LightSampleContext& ctx, const V
     return std::visit(
         [&](const auto& x) -> float {
             using T = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>) return x.pdf_li(ctx, wi, t, mode);
-            else if constexpr (std::is_same_v<T, WorldLight>) return x.pdf_li(wi);
-            else return 0.f;
+            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>)
+                return x.pdf_li(ctx, wi, t, mode);
+            else if constexpr (std::is_same_v<T, WorldLight>)
+                return x.pdf_li(wi);
+            else
+                return 0.f;
         },
         l);
 }
@@ -51,12 +56,16 @@ inline float light_area(const Light& l) {
     return std::visit(
         [](const auto& x) -> float {
             using T = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>) return x.area;
-            else return 0.f;
+            if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>)
+                return x.area;
+            else
+                return 0.f;
         },
         l);
 }
-inline float light_power(const Light& l) { return std::visit([](const auto& x) { return x.power(); }, l); }
+inline float light_power(const Light& l) {
+    return std::visit([](const auto& x) { return x.power(); }, l);
+}
 
 /// Column names of the `lights` array and names of `light_type` values (Blender's light types).
 const std::vector<std::string>& light_columns();
@@ -91,9 +100,7 @@ public:
     }
 
     /// Picks one light ∝ power: returns its index and probability.
-    uint32_t select(float u, float* pmf) const {
-        return static_cast<uint32_t>(m_selection.sample_discrete(u, pmf));
-    }
+    uint32_t select(float u, float* pmf) const { return static_cast<uint32_t>(m_selection.sample_discrete(u, pmf)); }
     float selection_pmf(uint32_t i) const { return m_selection.pmf(i); }
 
     const std::vector<uint32_t>& area_lights() const { return m_area_lights; }
@@ -109,9 +116,7 @@ public:
 
     /// The light-sampled world (an environment map), if any.
     int world_light() const { return m_world; }
-    const WorldLight* world() const {
-        return m_world < 0 ? nullptr : &std::get<WorldLight>(m_lights[m_world]);
-    }
+    const WorldLight* world() const { return m_world < 0 ? nullptr : &std::get<WorldLight>(m_lights[m_world]); }
 
 private:
     std::vector<Light> m_lights;

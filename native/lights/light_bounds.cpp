@@ -83,7 +83,11 @@ float polygon_bound(const Vec3* v, int count, const LightSampleContext& ctx) {
 float LightBounds::importance(const Vec3& p, const Vec3& n) const { return LightImportance(*this)(p, n); }
 
 LightImportance::LightImportance(const LightBounds& b)
-    : centre(b.bounds.centroid()), w(b.w), cos_o(b.cos_theta_o), cos_e(b.cos_theta_e), phi(b.phi),
+    : centre(b.bounds.centroid()),
+      w(b.w),
+      cos_o(b.cos_theta_o),
+      cos_e(b.cos_theta_e),
+      phi(b.phi),
       two_sided(b.two_sided) {
     radius2 = 0.25f * length_squared(b.bounds.diagonal());
     radius = std::sqrt(radius2);

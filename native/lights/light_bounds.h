@@ -37,10 +37,10 @@ struct Bounds3 {
 
 struct LightBounds {
     Bounds3 bounds;
-    Vec3 w{0.f, 0.f, 1.f};     // orientation cone axis (unit)
-    float phi = 0.f;           // flux (luminance), the same measure as light_power()
-    float cos_theta_o = 1.f;   // spread of the emitters' normals about w
-    float cos_theta_e = 0.f;   // emission beyond the normal spread (cos π/2 for Lambertian emitters)
+    Vec3 w{0.f, 0.f, 1.f};    // orientation cone axis (unit)
+    float phi = 0.f;          // flux (luminance), the same measure as light_power()
+    float cos_theta_o = 1.f;  // spread of the emitters' normals about w
+    float cos_theta_e = 0.f;  // emission beyond the normal spread (cos π/2 for Lambertian emitters)
     bool two_sided = false;
 
     /// Conservative importance at point p with normal n (n = 0: no cosine factor), 0 where no light of the

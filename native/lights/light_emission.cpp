@@ -264,13 +264,16 @@ float light_emitted_power(const Light& light, const SceneSphere& bounds) {
     return std::visit(
         [&](const auto& l) -> float {
             using T = std::decay_t<decltype(l)>;
-            if constexpr (std::is_same_v<T, PointLight>) return luminance(l.intensity) * spot_solid_angle_integral(l.spot);
+            if constexpr (std::is_same_v<T, PointLight>)
+                return luminance(l.intensity) * spot_solid_angle_integral(l.spot);
             else if constexpr (std::is_same_v<T, SunLight>)
                 return k_pi * bounds.radius * bounds.radius * luminance(l.irradiance);
             else if constexpr (std::is_same_v<T, WorldLight>)
                 return k_pi * bounds.radius * bounds.radius * 4.f * k_pi * luminance(l.radiance);
-            else if constexpr (std::is_same_v<T, AreaLight>) return k_pi * l.area * luminance(l.radiance);
-            else return 2.f * k_pi * l.area * luminance(l.radiance);
+            else if constexpr (std::is_same_v<T, AreaLight>)
+                return k_pi * l.area * luminance(l.radiance);
+            else
+                return 2.f * k_pi * l.area * luminance(l.radiance);
         },
         light);
 }

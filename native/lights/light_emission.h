@@ -37,14 +37,14 @@ struct SceneSphere {
 };
 
 struct EmissionSample {
-    Vec3 p;            // the ray's origin
-    Vec3 n{0.f};       // the emitting surface's unit normal at p (on the side d leaves; zero for point lights)
-    Vec3 d;            // unit direction of emission
-    Color Le{0.f};     // radiance along d (a delta position: intensity; a delta direction: irradiance)
+    Vec3 p;               // the ray's origin
+    Vec3 n{0.f};          // the emitting surface's unit normal at p (on the side d leaves; zero for point lights)
+    Vec3 d;               // unit direction of emission
+    Color Le{0.f};        // radiance along d (a delta position: intensity; a delta direction: irradiance)
     float pdf_pos = 0.f;  // area density of p (1 for a delta position)
     float pdf_dir = 0.f;  // solid-angle density of d given p (1 for a delta direction)
     bool delta_pos = false, delta_dir = false;
-    bool infinite = false;  // sun and world: p lies on a disk outside the scene
+    bool infinite = false;     // sun and world: p lies on a disk outside the scene
     float b1 = 0.f, b2 = 0.f;  // a triangle's barycentric weights of p (textured emission)
 
     bool valid() const { return pdf_pos > 0.f && pdf_dir > 0.f && !is_black(Le); }
@@ -69,12 +69,13 @@ void light_pdf_le(const Light& l, const Vec3& p, const Vec3& n, const Vec3& d, c
 /// light's sphere, the position of a point light; for the sun and the world a direction toward them, by their own
 /// sampling.
 struct EmitterPoint {
-    Vec3 p{0.f}, n{0.f};   // point and unit normal (on the emitting side chosen); zero normal for points
-    float pdf_pos = 0.f;   // area density of p (1 for a delta position); for distant lights the solid-angle density of omega
+    Vec3 p{0.f}, n{0.f};  // point and unit normal (on the emitting side chosen); zero normal for points
+    float pdf_pos =
+        0.f;  // area density of p (1 for a delta position); for distant lights the solid-angle density of omega
     bool delta_pos = false, infinite = false;
-    Vec3 omega{0.f};       // distant lights: the unit direction toward the light
+    Vec3 omega{0.f};           // distant lights: the unit direction toward the light
     float b1 = 0.f, b2 = 0.f;  // a triangle's barycentric weights of p (textured emission)
-    Color Le{0.f};         // distant lights: the radiance (irradiance for a delta sun) arriving along −omega
+    Color Le{0.f};             // distant lights: the radiance (irradiance for a delta sun) arriving along −omega
     bool valid() const { return pdf_pos > 0.f; }
 };
 EmitterPoint light_sample_point(const Light& l, Vec2 u_pos, Vec2 u_dir, float u_side);

@@ -26,11 +26,11 @@ struct LightSampleContext {
 };
 
 struct LightSample {
-    Color Li;              // incident radiance (or, for delta lights, intensity/d² folded in) along -wi
-    Vec3 wi;               // unit direction from the shading point toward the light
-    float dist = 0.f;      // distance to the sampled point (infinity for distant lights)
-    float pdf = 0.f;       // solid-angle pdf of wi (1 for delta lights); 0 = no sample
-    bool is_delta = false; // never reached by BSDF sampling (delta, or NEE-only): weight 1, no MIS
+    Color Li;               // incident radiance (or, for delta lights, intensity/d² folded in) along -wi
+    Vec3 wi;                // unit direction from the shading point toward the light
+    float dist = 0.f;       // distance to the sampled point (infinity for distant lights)
+    float pdf = 0.f;        // solid-angle pdf of wi (1 for delta lights); 0 = no sample
+    bool is_delta = false;  // never reached by BSDF sampling (delta, or NEE-only): weight 1, no MIS
 
     bool valid() const { return pdf > 0.f && !is_black(Li); }
 };

@@ -153,9 +153,10 @@ uint32_t TreeLightSampler::build(std::vector<std::pair<uint32_t, LightBounds>>& 
     if (mid == begin || mid == end) {  // no useful split: halve by count along the widest centroid axis
         const int a = cextent.x >= cextent.y && cextent.x >= cextent.z ? 0 : cextent.y >= cextent.z ? 1 : 2;
         mid = (begin + end) / 2;
-        std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end, [&](const auto& x, const auto& y) {
-            return axis_of(x.second.bounds.centroid(), a) < axis_of(y.second.bounds.centroid(), a);
-        });
+        std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                         [&](const auto& x, const auto& y) {
+                             return axis_of(x.second.bounds.centroid(), a) < axis_of(y.second.bounds.centroid(), a);
+                         });
     }
     build(items, begin, mid, node_index, depth + 1);
     const uint32_t second = build(items, mid, end, node_index, depth + 1);
@@ -223,7 +224,8 @@ float TreeLightSampler::pmf(const LightSampleContext& ctx, uint32_t light) const
     std::vector<uint32_t> long_path;
     int len = 0;
     for (uint32_t nd = leaf; nd != ~0u; nd = m_nodes[nd].parent) {
-        if (len < 128) path[len] = nd;
+        if (len < 128)
+            path[len] = nd;
         else {
             if (long_path.empty()) long_path.assign(path, path + 128);
             long_path.push_back(nd);
@@ -312,7 +314,8 @@ WardList WardLightSampler::candidates(const LightSampleContext& ctx) const {
     std::stable_sort(list.m_candidates.begin(), list.m_candidates.end(),
                      [](const WardList::Candidate& x, const WardList::Candidate& y) { return x.bound > y.bound; });
     list.m_suffix.assign(list.m_candidates.size() + 1, 0.0);
-    for (size_t j = list.m_candidates.size(); j-- > 0;) list.m_suffix[j] = list.m_suffix[j + 1] + list.m_candidates[j].bound;
+    for (size_t j = list.m_candidates.size(); j-- > 0;)
+        list.m_suffix[j] = list.m_suffix[j + 1] + list.m_candidates[j].bound;
     return list;
 }
 
@@ -332,34 +335,31 @@ float WardLightSampler::adaptive_pmf(const LightSampleContext& ctx, uint32_t lig
 LightSampler make_light_sampler(LightSelection kind, const LightSet& lights, const LightSamplerOptions&) {
     const auto n = uint32_t(lights.size());
     switch (kind) {
-        case LightSelection::All:
-        case LightSelection::Uniform:
-            return LightSampler(kind, n, UniformLightSampler(n));
-        case LightSelection::Area: {
-            std::vector<float> area(n);
-            double sum = 0.0;
-            int count = 0;
-            for (uint32_t i = 0; i < n; ++i) {
-                area[i] = light_area(lights[i]);
-                if (area[i] > 0.f) {
-                    sum += area[i];
-                    ++count;
-                }
+    case LightSelection::All:
+    case LightSelection::Uniform: return LightSampler(kind, n, UniformLightSampler(n));
+    case LightSelection::Area: {
+        std::vector<float> area(n);
+        double sum = 0.0;
+        int count = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            area[i] = light_area(lights[i]);
+            if (area[i] > 0.f) {
+                sum += area[i];
+                ++count;
             }
-            const float stand_in = count > 0 ? float(sum / count) : 1.f;
-            for (float& a : area)
-                if (!(a > 0.f)) a = stand_in;
-            return LightSampler(kind, n, TableLightSampler(std::move(area)));
         }
-        case LightSelection::Power: {
-            std::vector<float> power(n);
-            for (uint32_t i = 0; i < n; ++i) power[i] = light_power(lights[i]);
-            return LightSampler(kind, n, TableLightSampler(std::move(power)));
-        }
-        case LightSelection::Tree:
-            return LightSampler(kind, n, TreeLightSampler(lights));
-        case LightSelection::Ward:
-            return LightSampler(kind, n, WardLightSampler(lights));
+        const float stand_in = count > 0 ? float(sum / count) : 1.f;
+        for (float& a : area)
+            if (!(a > 0.f)) a = stand_in;
+        return LightSampler(kind, n, TableLightSampler(std::move(area)));
+    }
+    case LightSelection::Power: {
+        std::vector<float> power(n);
+        for (uint32_t i = 0; i < n; ++i) power[i] = light_power(lights[i]);
+        return LightSampler(kind, n, TableLightSampler(std::move(power)));
+    }
+    case LightSelection::Tree: return LightSampler(kind, n, TreeLightSampler(lights));
+    case LightSelection::Ward: return LightSampler(kind, n, WardLightSampler(lights));
     }
     throw InternalError("unknown light selection");
 }

@@ -74,7 +74,7 @@ public:
     struct Node {
         LightBounds lb;
         LightImportance importance;  // lb prepared for queries
-        uint32_t index = 0;   // leaf: light index; interior: second child (the first is this node + 1)
+        uint32_t index = 0;          // leaf: light index; interior: second child (the first is this node + 1)
         uint32_t parent = ~0u;
         bool leaf = false;
     };

@@ -1,8 +1,8 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "lights/light.h"
 #include "input/scene_arrays.h"
+#include "lights/light.h"
 
 namespace candela {
 
@@ -16,9 +16,9 @@ const char* light_pdf_mode_name(LightPdfMode mode) { return mode == LightPdfMode
 
 const std::vector<std::string>& light_columns() {
     static const std::vector<std::string> cols = {
-        "strength_r", "strength_g", "strength_b", "pos_x", "pos_y", "pos_z", "dir_x", "dir_y", "dir_z",
-        "u_x", "u_y", "u_z", "v_x", "v_y", "v_z", "radius", "spot_size", "spot_blend", "angle", "shape",
-        "visible_camera"};
+        "strength_r", "strength_g", "strength_b", "pos_x",      "pos_y", "pos_z", "dir_x",
+        "dir_y",      "dir_z",      "u_x",        "u_y",        "u_z",   "v_x",   "v_y",
+        "v_z",        "radius",     "spot_size",  "spot_blend", "angle", "shape", "visible_camera"};
     return cols;
 }
 
@@ -110,7 +110,8 @@ void LightSet::finalize(float scene_radius) {
         std::visit(
             [&](auto& l) {
                 using T = std::decay_t<decltype(l)>;
-                if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, WorldLight>) l.scene_radius = scene_radius;
+                if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, WorldLight>)
+                    l.scene_radius = scene_radius;
             },
             m_lights[i]);
         power[i] = light_power(m_lights[i]);

@@ -20,9 +20,9 @@
 namespace candela {
 
 struct SpotShape {
-    Vec3 direction;        // where the spot points (unit)
-    float cos_half = -2.f; // cos(spot_size/2); -2 = no cone (a point light)
-    float smooth = 0.f;    // (1 − cos_half)·blend
+    Vec3 direction;         // where the spot points (unit)
+    float cos_half = -2.f;  // cos(spot_size/2); -2 = no cone (a point light)
+    float smooth = 0.f;     // (1 − cos_half)·blend
     bool cycles34_cosine = false;
 
     /// Cycles 3.4 spot attenuation for a unit direction from the light toward the shaded point.

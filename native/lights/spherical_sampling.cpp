@@ -42,11 +42,11 @@ double angle_between(const D3& a, const D3& b) {
 double atan_series(double t) {
     const double z = t * t;
     const double series =
-        1.0 + z * (-1.0 / 3.0 +
-                   z * (1.0 / 5.0 +
-                        z * (-1.0 / 7.0 +
-                             z * (1.0 / 9.0 +
-                                  z * (-1.0 / 11.0 + z * (1.0 / 13.0 + z * (-1.0 / 15.0 + z * (1.0 / 17.0))))))));
+        1.0 +
+        z * (-1.0 / 3.0 +
+             z * (1.0 / 5.0 +
+                  z * (-1.0 / 7.0 +
+                       z * (1.0 / 9.0 + z * (-1.0 / 11.0 + z * (1.0 / 13.0 + z * (-1.0 / 15.0 + z * (1.0 / 17.0))))))));
     return t * series;
 }
 
@@ -64,8 +64,10 @@ double atan_ratio(double n, double d) {
 double atan2_upper(double y, double x) {
     const double ax = std::fabs(x);
     double r;
-    if (y <= ax) r = ax > 0.0 ? atan_ratio(y, ax) : 0.0;
-    else r = k_pi_d / 2.0 - atan_ratio(ax, y);
+    if (y <= ax)
+        r = ax > 0.0 ? atan_ratio(y, ax) : 0.0;
+    else
+        r = k_pi_d / 2.0 - atan_ratio(ax, y);
     return x < 0.0 ? k_pi_d - r : r;
 }
 
@@ -77,11 +79,13 @@ double atan2_upper(double y, double x) {
 /// stay within ~1e-9 relative — far below the float resolution of the sampled direction.
 void sin_one_minus_cos(double x, double* sin_x, double* one_minus_cos_x) {
     const double g = 0.125 * x, g2 = g * g;
-    double s = g * (1.0 + g2 * (-1.0 / 6.0 +
-                                g2 * (1.0 / 120.0 + g2 * (-1.0 / 5040.0 + g2 * (1.0 / 362880.0 + g2 * (-1.0 / 39916800.0))))));
-    double m = g2 * (0.5 + g2 * (-1.0 / 24.0 +
-                                 g2 * (1.0 / 720.0 +
-                                       g2 * (-1.0 / 40320.0 + g2 * (1.0 / 3628800.0 + g2 * (-1.0 / 479001600.0))))));
+    double s =
+        g * (1.0 + g2 * (-1.0 / 6.0 +
+                         g2 * (1.0 / 120.0 + g2 * (-1.0 / 5040.0 + g2 * (1.0 / 362880.0 + g2 * (-1.0 / 39916800.0))))));
+    double m =
+        g2 *
+        (0.5 + g2 * (-1.0 / 24.0 +
+                     g2 * (1.0 / 720.0 + g2 * (-1.0 / 40320.0 + g2 * (1.0 / 3628800.0 + g2 * (-1.0 / 479001600.0))))));
     for (int i = 0; i < 3; ++i) {
         const double s2 = 2.0 * s * (1.0 - m);
         m = 2.0 * s * s;
@@ -100,9 +104,15 @@ SphericalTriangle SphericalTriangle::make(const Vec3& p, const Vec3& v0, const V
     const double triple = dotd(a, crossd(b, c));
     const double den = 1.0 + dotd(a, b) + dotd(a, c) + dotd(b, c);
     const double omega = 2.0 * atan2_upper(std::fabs(triple), den);
-    st.a[0] = a.x; st.a[1] = a.y; st.a[2] = a.z;
-    st.b[0] = b.x; st.b[1] = b.y; st.b[2] = b.z;
-    st.c[0] = c.x; st.c[1] = c.y; st.c[2] = c.z;
+    st.a[0] = a.x;
+    st.a[1] = a.y;
+    st.a[2] = a.z;
+    st.b[0] = b.x;
+    st.b[1] = b.y;
+    st.b[2] = b.z;
+    st.c[0] = c.x;
+    st.c[1] = c.y;
+    st.c[2] = c.z;
     st.triple = triple;
     st.omega = std::isfinite(omega) && omega > 0.0 ? omega : 0.0;
     return st;
@@ -134,10 +144,10 @@ SphericalSample SphericalTriangle::sample(Vec2 u) const {
     double sin_a_hat, omc_a_hat;
     sin_one_minus_cos(double(u.x) * omega, &sin_a_hat, &omc_a_hat);
     const double cos_a_hat = 1.0 - omc_a_hat;
-    const double s = sin_a_hat * cos_alpha - cos_a_hat * sin_alpha;  // sin(Â − α)
-    const double t = cos_a_hat * cos_alpha + sin_a_hat * sin_alpha;  // cos(Â − α)
+    const double s = sin_a_hat * cos_alpha - cos_a_hat * sin_alpha;   // sin(Â − α)
+    const double t = cos_a_hat * cos_alpha + sin_a_hat * sin_alpha;   // cos(Â − α)
     const double uu = sin_a_hat * sin_alpha - omc_a_hat * cos_alpha;  // t − cos α without the cancellation
-    const double vv = s + sin_alpha * dotd(a, b);  // cos c = a·b (the arc opposite c)
+    const double vv = s + sin_alpha * dotd(a, b);                     // cos c = a·b (the arc opposite c)
     const double den = (vv * s + uu * t) * sin_alpha;
     double q = den != 0.0 ? ((vv * t - uu * s) * cos_alpha - vv) / den : 1.0;  // cos of the arc a–c′
     if (!std::isfinite(q)) q = 1.0;
@@ -180,10 +190,18 @@ SphericalRectangle SphericalRectangle::make(const Vec3& o, const Vec3& s, const 
         z = z * -1.0;
         z0 = -z0;
     }
-    r.o[0] = od.x; r.o[1] = od.y; r.o[2] = od.z;
-    r.x[0] = x.x; r.x[1] = x.y; r.x[2] = x.z;
-    r.y[0] = y.x; r.y[1] = y.y; r.y[2] = y.z;
-    r.z[0] = z.x; r.z[1] = z.y; r.z[2] = z.z;
+    r.o[0] = od.x;
+    r.o[1] = od.y;
+    r.o[2] = od.z;
+    r.x[0] = x.x;
+    r.x[1] = x.y;
+    r.x[2] = x.z;
+    r.y[0] = y.x;
+    r.y[1] = y.y;
+    r.y[2] = y.z;
+    r.z[0] = z.x;
+    r.z[1] = z.y;
+    r.z[2] = z.z;
     r.z0 = z0;
     r.x0 = dotd(d, x);
     r.y0 = dotd(d, y);

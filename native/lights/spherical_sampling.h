@@ -63,7 +63,7 @@ struct SphericalRectangle {
     double x[3], y[3], z[3];
     double x0 = 0, y0 = 0, x1 = 0, y1 = 0, z0 = 0;
     double b0 = 0, b1 = 0, k = 0, S = 0;
-    bool valid = false;   // S computed and > 0
+    bool valid = false;  // S computed and > 0
     bool grazing = false;
 
     static SphericalRectangle make(const Vec3& o, const Vec3& s, const Vec3& ex, const Vec3& ey);
@@ -75,9 +75,9 @@ struct SphericalRectangle {
 
 /// A direction toward a sphere (center, radius) from `ref`, with the point it reaches.
 struct SphereSample {
-    Vec3 w;           // unit direction
-    Vec3 p;           // point on the sphere
-    Vec3 n;           // outward normal at p
+    Vec3 w;  // unit direction
+    Vec3 p;  // point on the sphere
+    Vec3 n;  // outward normal at p
     float dist = 0.f;
     float pdf = 0.f;  // solid angle; 0 = no sample
 };

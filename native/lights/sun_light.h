@@ -15,7 +15,7 @@
 namespace candela {
 
 struct SunLight {
-    Vec3 to_sun;     // unit direction toward the sun (−light direction)
+    Vec3 to_sun;       // unit direction toward the sun (−light direction)
     Color irradiance;  // S
     float tan_half_angle = 0.f;
     float scene_radius = 1.f;  // for power(): the flux through the scene's bounding disk

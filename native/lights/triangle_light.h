@@ -22,8 +22,8 @@ namespace candela {
 
 struct TriangleLight {
     Vec3 p0, p1, p2;
-    Vec3 normal;  // unit geometric normal
-    Color radiance;   // constant emission; a textured emitter's average (power and bounds only)
+    Vec3 normal;     // unit geometric normal
+    Color radiance;  // constant emission; a textured emitter's average (power and bounds only)
     float area = 0.f;
     const EmissionSource* source = nullptr;  // textured emission: radiance evaluated at each sampled point
     uint32_t source_id = 0;
@@ -57,7 +57,9 @@ struct TriangleLight {
         return {b1, b2};
     }
 
-    float pdf_li(const Vec3& d, float t) const { return area_to_solid_angle(1.f / area, t * t, std::fabs(dot(d, normal))); }
+    float pdf_li(const Vec3& d, float t) const {
+        return area_to_solid_angle(1.f / area, t * t, std::fabs(dot(d, normal)));
+    }
 
     /// Solid angle seen from p, and whether SOLID_ANGLE mode samples it spherically from there.
     bool uses_spherical_sampling(const Vec3& p, float* omega = nullptr) const {
@@ -73,7 +75,9 @@ struct TriangleLight {
         *sr = spherical_triangle_solid_angle(p, p0, p1, p2);
         return in_spherical_range(*sr);
     }
-    static bool in_spherical_range(double sr) { return sr > k_min_spherical_triangle_sr && sr < k_max_spherical_triangle_sr; }
+    static bool in_spherical_range(double sr) {
+        return sr > k_min_spherical_triangle_sr && sr < k_max_spherical_triangle_sr;
+    }
 
     /// The longest edge², computed once (prepare()) or, for a light that was not prepared, per call.
     float longest_edge_squared() const {

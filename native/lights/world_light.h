@@ -14,7 +14,7 @@
 namespace candela {
 
 struct WorldLight {
-    Color radiance;           // the constant colour; with an environment its mean radiance (power, bounds)
+    Color radiance;  // the constant colour; with an environment its mean radiance (power, bounds)
     float scene_radius = 1.f;
     std::shared_ptr<const EnvironmentMap> environment;  // null: constant
 

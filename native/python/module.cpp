@@ -37,8 +37,7 @@ void add_array(SceneArrays& arrays, const std::string& key, ElemType type, const
     py::array_t<T, py::array::c_style | py::array::forcecast> a;
     try {
         a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(value);
-    } catch (const py::error_already_set&) {
-    }
+    } catch (const py::error_already_set&) {}
     if (!a) throw InvalidScene("scene array '" + key + "' cannot be converted to " + elem_type_name(type));
     std::vector<size_t> shape(a.shape(), a.shape() + a.ndim());
     arrays.set(key, type, std::move(shape), a.data());
@@ -54,9 +53,9 @@ SceneArrays arrays_from_dict(const py::dict& dict, std::vector<std::string>* unk
             continue;
         }
         switch (spec->type) {
-            case ElemType::F32: add_array<float>(arrays, key, spec->type, item.second); break;
-            case ElemType::U32: add_array<uint32_t>(arrays, key, spec->type, item.second); break;
-            case ElemType::U8: add_array<uint8_t>(arrays, key, spec->type, item.second); break;
+        case ElemType::F32: add_array<float>(arrays, key, spec->type, item.second); break;
+        case ElemType::U32: add_array<uint32_t>(arrays, key, spec->type, item.second); break;
+        case ElemType::U8: add_array<uint8_t>(arrays, key, spec->type, item.second); break;
         }
     }
     return arrays;
@@ -67,16 +66,24 @@ Params params_from_dict(const py::dict& dict) {
     for (const auto& item : dict) {
         const std::string key = py::str(item.first);
         const py::handle v = item.second;
-        if (py::isinstance<py::bool_>(v)) params.set(key, v.cast<bool>());
-        else if (py::isinstance<py::int_>(v)) params.set(key, v.cast<int64_t>());
-        else if (py::isinstance<py::float_>(v)) params.set(key, v.cast<double>());
-        else if (py::isinstance<py::str>(v)) params.set(key, v.cast<std::string>());
+        if (py::isinstance<py::bool_>(v))
+            params.set(key, v.cast<bool>());
+        else if (py::isinstance<py::int_>(v))
+            params.set(key, v.cast<int64_t>());
+        else if (py::isinstance<py::float_>(v))
+            params.set(key, v.cast<double>());
+        else if (py::isinstance<py::str>(v))
+            params.set(key, v.cast<std::string>());
         else if (py::hasattr(v, "item")) {  // numpy scalar
             const py::object s = v.attr("item")();
-            if (py::isinstance<py::bool_>(s)) params.set(key, s.cast<bool>());
-            else if (py::isinstance<py::int_>(s)) params.set(key, s.cast<int64_t>());
-            else if (py::isinstance<py::float_>(s)) params.set(key, s.cast<double>());
-            else throw InvalidParameter("parameter '" + key + "' has an unsupported type");
+            if (py::isinstance<py::bool_>(s))
+                params.set(key, s.cast<bool>());
+            else if (py::isinstance<py::int_>(s))
+                params.set(key, s.cast<int64_t>());
+            else if (py::isinstance<py::float_>(s))
+                params.set(key, s.cast<double>());
+            else
+                throw InvalidParameter("parameter '" + key + "' has an unsupported type");
         } else {
             throw InvalidParameter("parameter '" + key + "' must be a bool, int, float or str");
         }
@@ -106,32 +113,32 @@ py::dict spec_dict(const ParamSpec& s) {
     d["group"] = s.group;
     d["active_if"] = s.active_if;
     switch (s.type) {
-        case ParamType::Bool:
-            d["type"] = "BOOL";
-            d["default"] = s.default_value != 0.0;
-            break;
-        case ParamType::Int:
-            d["type"] = "INT";
-            d["default"] = int64_t(s.default_value);
-            d["min"] = int64_t(s.min);
-            d["max"] = int64_t(s.max);
-            d["soft_max"] = int64_t(s.soft_max > 0.0 ? s.soft_max : s.max);
-            break;
-        case ParamType::Float:
-            d["type"] = "FLOAT";
-            d["default"] = s.default_value;
-            d["min"] = s.min;
-            d["max"] = s.max;
-            d["soft_max"] = s.soft_max > 0.0 ? s.soft_max : s.max;
-            break;
-        case ParamType::Enum: {
-            d["type"] = "ENUM";
-            d["default"] = s.default_item;
-            py::list items;
-            for (const EnumItem& item : s.items) items.append(py::make_tuple(item.id, item.label, item.description));
-            d["items"] = items;
-            break;
-        }
+    case ParamType::Bool:
+        d["type"] = "BOOL";
+        d["default"] = s.default_value != 0.0;
+        break;
+    case ParamType::Int:
+        d["type"] = "INT";
+        d["default"] = int64_t(s.default_value);
+        d["min"] = int64_t(s.min);
+        d["max"] = int64_t(s.max);
+        d["soft_max"] = int64_t(s.soft_max > 0.0 ? s.soft_max : s.max);
+        break;
+    case ParamType::Float:
+        d["type"] = "FLOAT";
+        d["default"] = s.default_value;
+        d["min"] = s.min;
+        d["max"] = s.max;
+        d["soft_max"] = s.soft_max > 0.0 ? s.soft_max : s.max;
+        break;
+    case ParamType::Enum: {
+        d["type"] = "ENUM";
+        d["default"] = s.default_item;
+        py::list items;
+        for (const EnumItem& item : s.items) items.append(py::make_tuple(item.id, item.label, item.description));
+        d["items"] = items;
+        break;
+    }
     }
     return d;
 }
@@ -280,8 +287,8 @@ py::dict viewport_status(const ViewportSession& s) {
     d["samples_total"] = st.samples_total;
     d["pixel_size"] = st.pixel_size;
     d["build_seconds"] = st.build_seconds;
-    d["seconds_to_first_image"] = st.seconds_to_first_image >= 0.0 ? py::object(py::float_(st.seconds_to_first_image))
-                                                                    : py::none();
+    d["seconds_to_first_image"] =
+        st.seconds_to_first_image >= 0.0 ? py::object(py::float_(st.seconds_to_first_image)) : py::none();
     d["scene_bytes"] = st.scene_bytes;
     d["film_bytes"] = st.film_bytes;
     d["bvh_built"] = st.bvh_built;
@@ -355,7 +362,7 @@ PYBIND11_MODULE(_native, m) {
                  d["stage_done"] = p.stage.done;
                  d["stage_total"] = p.stage.total;
                  d["stage_percent"] = p.stage.percent;  // show the stage's progress as a percentage
-                 d["note"] = p.stage.note;               // the integrator's status beside it ("1,234 records")
+                 d["note"] = p.stage.note;              // the integrator's status beside it ("1,234 records")
                  d["method"] = p.method;
                  d["fraction"] = p.fraction;
                  d["elapsed_s"] = p.elapsed_s;
@@ -393,14 +400,16 @@ PYBIND11_MODULE(_native, m) {
     py::class_<ViewportSession>(m, "ViewportSession")
         .def(py::init<int>(), py::arg("threads") = 0)
         .def("update_scene", &viewport_update_scene, py::arg("arrays"), py::arg("params"))
-        .def("update_settings",
-             [](ViewportSession& s, const py::dict& params) { return s.update_settings(params_from_dict(params)); },
-             py::arg("params"))
-        .def("set_view",
-             [](ViewportSession& s, const py::dict& view, const py::handle& camera_to_world) {
-                 return s.set_view(params_from_dict(view), affine_from(camera_to_world));
-             },
-             py::arg("view"), py::arg("camera_to_world"))
+        .def(
+            "update_settings",
+            [](ViewportSession& s, const py::dict& params) { return s.update_settings(params_from_dict(params)); },
+            py::arg("params"))
+        .def(
+            "set_view",
+            [](ViewportSession& s, const py::dict& view, const py::handle& camera_to_world) {
+                return s.set_view(params_from_dict(view), affine_from(camera_to_world));
+            },
+            py::arg("view"), py::arg("camera_to_world"))
         .def("pause", &ViewportSession::pause)
         .def("stop", &ViewportSession::stop, py::call_guard<py::gil_scoped_release>())
         .def("image_version", &ViewportSession::image_version)

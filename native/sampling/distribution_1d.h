@@ -25,7 +25,8 @@ public:
     size_t size() const { return m_func.size(); }
     /// Memory its tables take.
     size_t bytes() const {
-        return (m_func.capacity() + m_cdf.capacity() + m_pmf.capacity()) * sizeof(float) + m_resolve.capacity() * sizeof(uint32_t);
+        return (m_func.capacity() + m_cdf.capacity() + m_pmf.capacity()) * sizeof(float) +
+               m_resolve.capacity() * sizeof(uint32_t);
     }
     float integral() const { return m_integral; }
 
@@ -59,12 +60,12 @@ private:
     size_t find_bin_binary(float u) const;
     float remap(float u, size_t i) const;
 
-    std::vector<float> m_func;         // weights
-    std::vector<float> m_cdf;          // size()+1 entries, m_cdf[0] = 0, m_cdf[n] = 1
-    std::vector<float> m_pmf;          // weight_i / (integral · n)
-    std::vector<uint32_t> m_resolve;   // bin found by the search → the non-zero bin it stands for; empty if
-                                       // no weight is zero (identity)
-    float m_integral = 0.f;            // mean weight (∫ of the step function over [0,1])
+    std::vector<float> m_func;        // weights
+    std::vector<float> m_cdf;         // size()+1 entries, m_cdf[0] = 0, m_cdf[n] = 1
+    std::vector<float> m_pmf;         // weight_i / (integral · n)
+    std::vector<uint32_t> m_resolve;  // bin found by the search → the non-zero bin it stands for; empty if
+                                      // no weight is zero (identity)
+    float m_integral = 0.f;           // mean weight (∫ of the step function over [0,1])
 };
 
 }  // namespace candela

@@ -76,8 +76,8 @@ struct OwenKey {
 inline OwenKey owen_key(uint64_t seed) {
     const uint64_t h0 = mix64(seed ^ 0x6a09e667f3bcc909ULL);
     const uint64_t h1 = rotl64(h0 * 0xbb67ae8584caa73bULL, 29), h2 = rotl64(h0 * 0x3c6ef372fe94f82bULL, 43);
-    return {uint32_t(h0), uint32_t(h0 >> 32) << 1, uint32_t(h1) | 1u, uint32_t(h1 >> 32), uint32_t(h2) << 1,
-            uint32_t(h2 >> 32) | 1u};
+    return {uint32_t(h0),       uint32_t(h0 >> 32) << 1, uint32_t(h1) | 1u,
+            uint32_t(h1 >> 32), uint32_t(h2) << 1,       uint32_t(h2 >> 32) | 1u};
 }
 
 /// A bijection of 32-bit words in which output bit k equals input bit k XOR a seeded hash of the input

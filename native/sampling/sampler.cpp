@@ -94,7 +94,6 @@ float HammersleySampler::sample_1d(uint32_t dim) const {
 
 // ---- SOBOL (Burley 2020: shuffled, Owen-scrambled (0,2)-sequence per request) ----
 
-
 // ---- registry ----
 
 std::vector<std::string> sampler_names() { return {"RANDOM", "STRATIFIED", "NROOKS", "HALTON", "HAMMERSLEY", "SOBOL"}; }

@@ -204,11 +204,13 @@ public:
             const FilterSeeds& f = m_filter_seeds;
             const uint32_t i = reverse_bits32(burley_lsb_hash_tail(m_premixed_index, f.shuffle, f.shuffle_m2));
             return {fixed_to_float(reverse_bits32(burley_lsb_hash_tail(sobol_premix(i), f.x, f.x_m2))),
-                    fixed_to_float(reverse_bits32(burley_lsb_hash_tail(sobol_premix(sobol_dim1_reversed(i)), f.y, f.y_m2)))};
+                    fixed_to_float(
+                        reverse_bits32(burley_lsb_hash_tail(sobol_premix(sobol_dim1_reversed(i)), f.y, f.y_m2)))};
         }
         const uint32_t i = reverse_bits32(burley_lsb_hash(m_reversed_index, sobol_seed(m_pixel_seed, dim, 1)));
-        return {fixed_to_float(reverse_bits32(burley_lsb_hash(i, sobol_seed(m_pixel_seed, dim, 2)))),
-                fixed_to_float(reverse_bits32(burley_lsb_hash(sobol_dim1_reversed(i), sobol_seed(m_pixel_seed, dim, 3))))};
+        return {
+            fixed_to_float(reverse_bits32(burley_lsb_hash(i, sobol_seed(m_pixel_seed, dim, 2)))),
+            fixed_to_float(reverse_bits32(burley_lsb_hash(sobol_dim1_reversed(i), sobol_seed(m_pixel_seed, dim, 3))))};
     }
     /// Every per-bounce value of `bounce` in one 8-lane batch: the same values as the single draws. The batch's
     /// seeds depend on the pixel and the bounce only, and a pixel's samples come in runs: the seeds of the first
@@ -257,8 +259,8 @@ private:
         uint32_t shuffle[8], value[8];
     };
     static constexpr BounceWords bounce_words() {
-        constexpr uint32_t dims[8] = {uint32_t(Dim::LightSelect), uint32_t(Dim::Light), uint32_t(Dim::Light),
-                                      uint32_t(Dim::Bsdf),        uint32_t(Dim::Bsdf),  uint32_t(Dim::Roulette),
+        constexpr uint32_t dims[8] = {uint32_t(Dim::LightSelect), uint32_t(Dim::Light),      uint32_t(Dim::Light),
+                                      uint32_t(Dim::Bsdf),        uint32_t(Dim::Bsdf),       uint32_t(Dim::Roulette),
                                       uint32_t(Dim::BsdfLobe),    uint32_t(Dim::LightSelect)};
         BounceWords w{};
         for (int k = 0; k < 8; ++k) {
@@ -295,9 +297,9 @@ private:
         m_filter_seeds = {s.shuffle, burley_m2(s.shuffle), s.first, burley_m2(s.first), s.second, burley_m2(s.second)};
     }
 
-    uint32_t m_reversed_index = 0;  // the scrambles work on bit-reversed words: reverse the index once
-    uint32_t m_premixed_index = 0;  // sobol_premix(m_reversed_index): the shuffle hash's first step
-    uint32_t m_pixel_seed = 0;      // 32 random bits of the pixel key: sobol_seed() derives every scramble from it
+    uint32_t m_reversed_index = 0;    // the scrambles work on bit-reversed words: reverse the index once
+    uint32_t m_premixed_index = 0;    // sobol_premix(m_reversed_index): the shuffle hash's first step
+    uint32_t m_pixel_seed = 0;        // 32 random bits of the pixel key: sobol_seed() derives every scramble from it
     uint32_t m_cache_pixel_seed = 0;  // the pixel seed m_seed_cache belongs to
     uint32_t m_cached_bounces = 0;    // bit b: m_seed_cache[b] holds bounce b's seeds
     FilterSeeds m_filter_seeds{};     // of m_cache_pixel_seed
@@ -323,8 +325,8 @@ BounceSample draw_bounce(S& s, int bounce, unsigned needs) {
     }
 }
 
-using Sampler = std::variant<IndependentSampler, StratifiedSampler, NRooksSampler, HaltonSampler, HammersleySampler,
-                             SobolSampler>;
+using Sampler =
+    std::variant<IndependentSampler, StratifiedSampler, NRooksSampler, HaltonSampler, HammersleySampler, SobolSampler>;
 
 /// Names accepted by make_sampler (the add-on's `sampler` enum identifiers).
 std::vector<std::string> sampler_names();

@@ -78,7 +78,9 @@ inline __m256i hash32(__m256i x) {
     return _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
 }
 
-inline __m256i seed_multiplier(__m256i seed) { return _mm256_or_si256(_mm256_srli_epi32(seed, 16), _mm256_set1_epi32(1)); }
+inline __m256i seed_multiplier(__m256i seed) {
+    return _mm256_or_si256(_mm256_srli_epi32(seed, 16), _mm256_set1_epi32(1));
+}
 
 /// burley_lsb_hash_tail: x is the input after burley_lsb_hash's first step.
 inline __m256i burley_lsb_hash_tail(__m256i x, __m256i seed, __m256i m2) {
@@ -130,8 +132,10 @@ inline void sobol_seeds_x8_words(uint32_t base, const uint32_t (&shuffle_words)[
 #if defined(__AVX2__)
     using namespace simd;
     const __m256i b = _mm256_set1_epi32(int(base));
-    const __m256i s_shuffle = hash32(_mm256_add_epi32(b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(shuffle_words))));
-    const __m256i s_value = hash32(_mm256_add_epi32(b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(value_words))));
+    const __m256i s_shuffle =
+        hash32(_mm256_add_epi32(b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(shuffle_words))));
+    const __m256i s_value =
+        hash32(_mm256_add_epi32(b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(value_words))));
     store(out.shuffle, s_shuffle);
     store(out.shuffle_m2, mul(seed_multiplier(s_shuffle), k_burley_c2));
     store(out.value, s_value);
@@ -162,9 +166,11 @@ inline void sobol_x8_seeded(const SobolSeedsX8& seeds, uint32_t premixed, uint32
 #if defined(__AVX2__)
     using namespace simd;
     const __m256i s_value = load(seeds.value);
-    const __m256i i = reverse_bits(burley_lsb_hash_tail(_mm256_set1_epi32(int(premixed)), load(seeds.shuffle), load(seeds.shuffle_m2)));
+    const __m256i i = reverse_bits(
+        burley_lsb_hash_tail(_mm256_set1_epi32(int(premixed)), load(seeds.shuffle), load(seeds.shuffle_m2)));
     const __m256i input = _mm256_blendv_epi8(i, sobol_dim1_reversed(i), lane_mask(y_lanes));
-    const __m256i v = reverse_bits(burley_lsb_hash_tail(_mm256_xor_si256(input, mul(input, k_burley_c1)), s_value, load(seeds.value_m2)));
+    const __m256i v = reverse_bits(
+        burley_lsb_hash_tail(_mm256_xor_si256(input, mul(input, k_burley_c1)), s_value, load(seeds.value_m2)));
     // fixed_to_float: the top 24 bits, exactly representable, times 2⁻²⁴.
     const __m256 f = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_srli_epi32(v, 8)), _mm256_set1_ps(0x1p-24f));
     _mm256_storeu_ps(out, f);
@@ -172,7 +178,8 @@ inline void sobol_x8_seeded(const SobolSeedsX8& seeds, uint32_t premixed, uint32
     for (int k = 0; k < 8; ++k) {
         const uint32_t i = reverse_bits32(burley_lsb_hash_tail(premixed, seeds.shuffle[k], seeds.shuffle_m2[k]));
         const uint32_t input = ((y_lanes >> k) & 1u) != 0 ? sobol_dim1_reversed(i) : i;
-        out[k] = fixed_to_float(reverse_bits32(burley_lsb_hash_tail(sobol_premix(input), seeds.value[k], seeds.value_m2[k])));
+        out[k] = fixed_to_float(
+            reverse_bits32(burley_lsb_hash_tail(sobol_premix(input), seeds.value[k], seeds.value_m2[k])));
     }
 #endif
 }

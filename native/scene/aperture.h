@@ -13,10 +13,10 @@
 namespace candela {
 
 struct Aperture {
-    float radius = 0.f;    // scene units; 0 = pinhole
-    int blades = 0;        // < 3: a disk
-    float rotation = 0.f;  // radians
-    float inv_ratio = 1.f; // 1 / aperture_ratio
+    float radius = 0.f;     // scene units; 0 = pinhole
+    int blades = 0;         // < 3: a disk
+    float rotation = 0.f;   // radians
+    float inv_ratio = 1.f;  // 1 / aperture_ratio
 
     bool is_pinhole() const { return !(radius > 0.f); }
 

@@ -78,7 +78,8 @@ Camera::Camera(const Params& params, const Affine& camera_to_world)
     m_rigid = true;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            m_rigid = m_rigid && std::fabs(dot(m_to_world.column(i), m_to_world.column(j)) - (i == j ? 1.f : 0.f)) <= 1e-6f;
+            m_rigid =
+                m_rigid && std::fabs(dot(m_to_world.column(i), m_to_world.column(j)) - (i == j ? 1.f : 0.f)) <= 1e-6f;
 
     // Depth of field (Blender's Camera > Depth of Field; Cycles' blender_camera_from_object). The keys are read
     // even when it is off, so they never count as unknown.
@@ -94,7 +95,8 @@ Camera::Camera(const Params& params, const Affine& camera_to_world)
         if (!(ratio > 0.f) || !std::isfinite(ratio))
             throw InvalidParameter("camera aperture_ratio must be positive (got " + std::to_string(ratio) + ")");
         if (!(focus >= 0.f) || !std::isfinite(focus))
-            throw InvalidParameter("camera focus_distance must be a finite distance >= 0 (got " + std::to_string(focus) + ")");
+            throw InvalidParameter("camera focus_distance must be a finite distance >= 0 (got " +
+                                   std::to_string(focus) + ")");
         if (blades < 0) throw InvalidParameter("camera aperture_blades must not be negative");
         if (!std::isfinite(rotation)) throw InvalidParameter("camera aperture_rotation must be finite");
         m_focus_distance = std::max(focus, 1e-5f);  // Cycles' floor
@@ -177,23 +179,30 @@ void Camera::read_panorama(const Params& params, bool pano, float sensor_width, 
     const std::string kind = params.get_enum("panorama_type", "FISHEYE_EQUISOLID",
                                              {"EQUIRECTANGULAR", "FISHEYE_EQUIDISTANT", "FISHEYE_EQUISOLID",
                                               "EQUIANGULAR_CUBEMAP_FACE", "MIRRORBALL", "FISHEYE_LENS_POLYNOMIAL"});
-    const float lat_min = params.get<float>("latitude_min", -0.5f * k_pi), lat_max = params.get<float>("latitude_max", 0.5f * k_pi);
+    const float lat_min = params.get<float>("latitude_min", -0.5f * k_pi),
+                lat_max = params.get<float>("latitude_max", 0.5f * k_pi);
     const float lon_min = params.get<float>("longitude_min", -k_pi), lon_max = params.get<float>("longitude_max", k_pi);
     m_fisheye_fov = params.get<float>("fisheye_fov", k_pi);
     m_fisheye_lens = params.get<float>("fisheye_lens", 10.5f);
     const float box[4] = {params.get<float>("pano_left", 0.f), params.get<float>("pano_right", 1.f),
                           params.get<float>("pano_bottom", 0.f), params.get<float>("pano_top", 1.f)};
     if (!pano) return;
-    if (kind == "EQUIRECTANGULAR") m_pano = Panorama::Equirectangular;
-    else if (kind == "FISHEYE_EQUIDISTANT") m_pano = Panorama::FisheyeEquidistant;
-    else if (kind == "FISHEYE_EQUISOLID") m_pano = Panorama::FisheyeEquisolid;
+    if (kind == "EQUIRECTANGULAR")
+        m_pano = Panorama::Equirectangular;
+    else if (kind == "FISHEYE_EQUIDISTANT")
+        m_pano = Panorama::FisheyeEquidistant;
+    else if (kind == "FISHEYE_EQUISOLID")
+        m_pano = Panorama::FisheyeEquisolid;
     else
-        throw InvalidParameter("panoramic camera type " + kind + " is not supported (Candela renders Equirectangular, "
+        throw InvalidParameter("panoramic camera type " + kind +
+                               " is not supported (Candela renders Equirectangular, "
                                "Fisheye Equidistant and Fisheye Equisolid)");
     for (float v : {lat_min, lat_max, lon_min, lon_max, box[0], box[1], box[2], box[3]})
-        if (!std::isfinite(v)) throw InvalidParameter("panoramic camera latitude, longitude and view box must be finite");
+        if (!std::isfinite(v))
+            throw InvalidParameter("panoramic camera latitude, longitude and view box must be finite");
     if (!(lat_max > lat_min) || !(lon_max > lon_min))
-        throw InvalidParameter("panoramic camera: latitude_max must exceed latitude_min and longitude_max longitude_min");
+        throw InvalidParameter(
+            "panoramic camera: latitude_max must exceed latitude_min and longitude_max longitude_min");
     if (!(m_fisheye_fov > 0.f) || !(m_fisheye_fov <= 2.f * k_pi) || !(m_fisheye_lens > 0.f))
         throw InvalidParameter("fisheye camera: fisheye_fov must be in (0, 360°] and fisheye_lens positive");
     if (!(box[1] > box[0]) || !(box[3] > box[2])) throw InvalidParameter("panoramic camera: the view box is empty");

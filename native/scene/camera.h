@@ -41,19 +41,20 @@ struct Ray {
 
 /// A connection from a world point to the camera, for light-rooted strategies.
 struct CameraConnection {
-    Vec3 wi;                 // unit direction from the reference point toward lens_point
-    float dist = 0.f;        // distance from the reference point to lens_point
-    Vec3 lens_point;         // where the camera ray through the reference point starts (on the aperture; on the
-                             // clip_start plane for orthographic)
-    Vec2 raster;             // the full-frame raster position that camera ray has
+    Vec3 wi;           // unit direction from the reference point toward lens_point
+    float dist = 0.f;  // distance from the reference point to lens_point
+    Vec3 lens_point;   // where the camera ray through the reference point starts (on the aperture; on the
+                       // clip_start plane for orthographic)
+    Vec2 raster;       // the full-frame raster position that camera ray has
     /// K: for a camera ray of generate_ray with raster uniform over the full frame and u_lens uniform,
     /// E_lens[K·|cos θ_ref|]·a is the probability that it hits a small disk of area a at the reference point whose
     /// normal makes the angle θ_ref with wi. Perspective (pinhole or thin lens): 1/(A_img·cos³θ·dist²), θ between
     /// the ray and the view axis, A_img = image_plane_area(); orthographic with depth of field: 1/(A_view·cos θ).
     float importance = 0.f;
-    float pdf_pos = 1.f;     // area density of lens_point under generate_ray's lens sampling (1 and delta_pos for a
-                             // pinhole; orthographic with depth of field: 1/A_view on the clip_start plane)
-    float pdf_dir = 0.f;     // solid-angle density of the ray direction under generate_ray with raster uniform over the full frame
+    float pdf_pos = 1.f;  // area density of lens_point under generate_ray's lens sampling (1 and delta_pos for a
+                          // pinhole; orthographic with depth of field: 1/A_view on the clip_start plane)
+    float pdf_dir =
+        0.f;  // solid-angle density of the ray direction under generate_ray with raster uniform over the full frame
     bool delta_pos = false;
 };
 
@@ -62,7 +63,8 @@ public:
     /// What an integrator that needs a connection to the camera reports for a camera that has none
     /// (not_connectable_message()).
     static constexpr const char* k_not_connectable_message =
-        "the orthographic camera without depth of field has no light-tracing strategy: use PATH or enable depth of field";
+        "the orthographic camera without depth of field has no light-tracing strategy: use PATH or enable depth of "
+        "field";
 
     /// Reads the camera params (docs/architecture.md); camera_to_world has no scale.
     Camera(const Params& params, const Affine& camera_to_world);
@@ -156,13 +158,13 @@ private:
     Affine m_to_camera;  // m_to_world's inverse
     bool m_ortho = false;
     Panorama m_pano = Panorama::None;
-    float m_pano_range[4] = {0.f, 0.f, 0.f, 0.f};   // equirectangular: φ = r0·u + r1, θ = r2·v + r3
+    float m_pano_range[4] = {0.f, 0.f, 0.f, 0.f};  // equirectangular: φ = r0·u + r1, θ = r2·v + r3
     float m_fisheye_fov = 3.14159265f, m_fisheye_lens = 10.5f;
-    float m_pano_sensor_w = 36.f, m_pano_sensor_h = 24.f;   // equisolid: the sensor after sensor fit (mm)
-    float m_pano_box[4] = {0.f, 1.f, 0.f, 1.f};     // frame fraction of raster 0 and W (x), 0 and H (y)
+    float m_pano_sensor_w = 36.f, m_pano_sensor_h = 24.f;  // equisolid: the sensor after sensor fit (mm)
+    float m_pano_box[4] = {0.f, 1.f, 0.f, 1.f};            // frame fraction of raster 0 and W (x), 0 and H (y)
     int m_width = 0, m_height = 0;
     float m_left = -1, m_right = 1, m_bottom = -1, m_top = 1;  // viewplane
-    float m_tan_half_fov = 1.f;                                 // perspective scale of the viewplane
+    float m_tan_half_fov = 1.f;                                // perspective scale of the viewplane
     float m_clip_start = 0.1f, m_clip_end = 1000.f;
     Aperture m_aperture;
     float m_focus_distance = 10.f;

@@ -64,10 +64,10 @@ std::string Camera::panoramic_not_connectable_message(const std::string& type) {
 
 std::string Camera::panorama_type_name() const {
     switch (m_pano) {
-        case Panorama::Equirectangular: return "EQUIRECTANGULAR";
-        case Panorama::FisheyeEquidistant: return "FISHEYE_EQUIDISTANT";
-        case Panorama::FisheyeEquisolid: return "FISHEYE_EQUISOLID";
-        default: return std::string();
+    case Panorama::Equirectangular: return "EQUIRECTANGULAR";
+    case Panorama::FisheyeEquidistant: return "FISHEYE_EQUIDISTANT";
+    case Panorama::FisheyeEquisolid: return "FISHEYE_EQUISOLID";
+    default: return std::string();
     }
 }
 
@@ -173,7 +173,8 @@ bool Camera::connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out, float 
         const Vec3 L(lens.x, lens.y, 0.f);
         const float f = dof ? m_focus_distance : 1.f;
         const float s = f / depth, to_view = 1.f / (f * m_tan_half_fov);
-        if (!viewplane_to_raster((L.x + (p.x - L.x) * s) * to_view, (L.y + (p.y - L.y) * s) * to_view, &c.raster, margin))
+        if (!viewplane_to_raster((L.x + (p.x - L.x) * s) * to_view, (L.y + (p.y - L.y) * s) * to_view, &c.raster,
+                                 margin))
             return false;
         const Vec3 to_lens = L - p;
         const float d_cam = length(to_lens);

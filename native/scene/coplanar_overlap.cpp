@@ -109,9 +109,8 @@ public:
         collect();
         check_cancel();
         if (!(m_td > 0.0)) return;
-        std::sort(m_entries.begin(), m_entries.end(), [](const Entry& a, const Entry& b) {
-            return a.key != b.key ? a.key < b.key : a.d_lo < b.d_lo;
-        });
+        std::sort(m_entries.begin(), m_entries.end(),
+                  [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.d_lo < b.d_lo; });
         // Within one normal cell, faces whose offset intervals chain form a cluster; only clusters holding two
         // objects or more are looked at further.
         const size_t n = m_entries.size();
@@ -197,8 +196,10 @@ private:
                     const uint32_t key = uint32_t(x) | uint32_t(y) << 8 | uint32_t(z) << 16;
                     m_entries.push_back({key, object, tri, d, r});
                     int32_t& first = m_cell_object[cell_index(key)];
-                    if (first == k_none) first = int32_t(object);
-                    else if (first != int32_t(object)) first = k_several;
+                    if (first == k_none)
+                        first = int32_t(object);
+                    else if (first != int32_t(object))
+                        first = k_several;
                 }
     }
 
@@ -363,12 +364,12 @@ private:
         return (key & 0xFFu) + k_cells * (((key >> 8) & 0xFFu) + k_cells * size_t(key >> 16));
     }
     std::vector<int32_t> m_cell_object = std::vector<int32_t>(size_t(k_cells) * k_cells * k_cells, k_none);
-    std::vector<int32_t> m_slot;   // per object: its bucket in the current cluster's counting sort, or −1
+    std::vector<int32_t> m_slot;  // per object: its bucket in the current cluster's counting sort, or −1
     std::vector<size_t> m_counts;
     std::vector<Entry> m_scratch;
-    std::vector<Item> m_items;     // the current cluster's rows
-    size_t m_cluster = 0;          // its first entry
-    std::vector<Box> m_boxes;      // per object, padded by the distance tolerance
+    std::vector<Item> m_items;  // the current cluster's rows
+    size_t m_cluster = 0;       // its first entry
+    std::vector<Box> m_boxes;   // per object, padded by the distance tolerance
     std::vector<Ref> m_refs;
 };
 

@@ -52,7 +52,7 @@ struct CoplanarReport {
 /// answer errs on the safe side: objects are flagged without the exact test. Throws Cancelled once `cancel`
 /// is cancelled (checked every 65,536 faces).
 CoplanarReport find_coplanar_rivals(const float* positions, const uint32_t* triangles,
-                                    const std::vector<CoplanarObject>& objects,
-                                    size_t max_triangles = size_t(1) << 22, const CancelToken* cancel = nullptr);
+                                    const std::vector<CoplanarObject>& objects, size_t max_triangles = size_t(1) << 22,
+                                    const CancelToken* cancel = nullptr);
 
 }  // namespace candela

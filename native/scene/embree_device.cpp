@@ -7,7 +7,8 @@ namespace candela {
 EmbreeDevice::EmbreeDevice(int threads) {
     const std::string config = "threads=" + std::to_string(threads > 0 ? threads : 0) + ",verbose=0";
     m_device = rtcNewDevice(config.c_str());
-    if (!m_device) throw InternalError("Embree: could not create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    if (!m_device)
+        throw InternalError("Embree: could not create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
     rtcSetDeviceErrorFunction(m_device, &EmbreeDevice::on_error, this);
     rtcSetDeviceMemoryMonitorFunction(m_device, &EmbreeDevice::on_memory, this);
 }
@@ -40,7 +41,8 @@ void EmbreeDevice::check(const char* what) {
     m_message.clear();
     if (code == RTC_ERROR_CANCELLED) throw Cancelled();
     if (code == RTC_ERROR_OUT_OF_MEMORY) throw InternalError(std::string("Embree ran out of memory while ") + what);
-    throw InternalError(std::string("Embree error ") + std::to_string(static_cast<int>(code)) + " while " + what + ": " + msg);
+    throw InternalError(std::string("Embree error ") + std::to_string(static_cast<int>(code)) + " while " + what +
+                        ": " + msg);
 }
 
 }  // namespace candela

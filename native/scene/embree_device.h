@@ -39,7 +39,9 @@ class EmbreeScene {
 public:
     EmbreeScene() = default;
     explicit EmbreeScene(RTCScene s) : m_scene(s) {}
-    ~EmbreeScene() { if (m_scene) rtcReleaseScene(m_scene); }
+    ~EmbreeScene() {
+        if (m_scene) rtcReleaseScene(m_scene);
+    }
     EmbreeScene(EmbreeScene&& o) noexcept : m_scene(o.m_scene) { o.m_scene = nullptr; }
     EmbreeScene& operator=(EmbreeScene&& o) noexcept {
         std::swap(m_scene, o.m_scene);

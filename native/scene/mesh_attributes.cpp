@@ -77,8 +77,8 @@ bool MeshAttributes::tangent_at(uint32_t t, float b1, float b2, Vec3* tangent_ou
     if (tangent.empty()) return false;
     const float* c = &tangent[12 * size_t(t)];
     const float b0 = 1.f - b1 - b2;
-    *tangent_out = Vec3(b0 * c[0] + b1 * c[4] + b2 * c[8], b0 * c[1] + b1 * c[5] + b2 * c[9],
-                        b0 * c[2] + b1 * c[6] + b2 * c[10]);
+    *tangent_out =
+        Vec3(b0 * c[0] + b1 * c[4] + b2 * c[8], b0 * c[1] + b1 * c[5] + b2 * c[9], b0 * c[2] + b1 * c[6] + b2 * c[10]);
     const float s = b0 * c[3] + b1 * c[7] + b2 * c[11];
     *sign = s < 0.f ? -1.f : 1.f;
     return !is_black(*tangent_out);

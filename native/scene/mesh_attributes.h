@@ -13,8 +13,8 @@ namespace candela {
 class SceneArrays;
 
 struct MeshAttributes {
-    std::vector<Vec2> uv;         // 3 per triangle, or empty (UV = 0)
-    std::vector<float> tangent;   // 4 per corner (x, y, z, sign), or empty (no tangent-space normal maps)
+    std::vector<Vec2> uv;        // 3 per triangle, or empty (UV = 0)
+    std::vector<float> tangent;  // 4 per corner (x, y, z, sign), or empty (no tangent-space normal maps)
     // Per triangle with UVs, the gradients of u and of v over the triangle's plane (object space): Bump's finite
     // differences move the UV by (∇u·d, ∇v·d) for an object-space offset d.
     std::vector<Vec3> uv_gradient;

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.h"
 #include "bsdf/material_inputs.h"
+#include "core/error.h"
 #include "input/scene_arrays.h"
 #include "scene/mesh_bvh_cache.h"
 #include "scene/scene_parts.h"
@@ -31,13 +31,13 @@ uint32_t closure_flags(ClosureType type) {
     constexpr uint32_t R = k_bsdf_reflection, T = k_bsdf_transmission, D = k_bsdf_diffuse, G = k_bsdf_glossy,
                        S = k_bsdf_specular;
     switch (type) {
-        case ClosureType::Diffuse: return R | D;
-        case ClosureType::Translucent: return T | D;
-        case ClosureType::Glossy: return R | G | S;
-        case ClosureType::Glass: return R | T | G | S;
-        case ClosureType::Refraction: return T | G | S;
-        case ClosureType::Transparent: return T | S | k_bsdf_transparent;
-        default: return R | T | D | G | S;  // Principled: every lobe
+    case ClosureType::Diffuse: return R | D;
+    case ClosureType::Translucent: return T | D;
+    case ClosureType::Glossy: return R | G | S;
+    case ClosureType::Glass: return R | T | G | S;
+    case ClosureType::Refraction: return T | G | S;
+    case ClosureType::Transparent: return T | S | k_bsdf_transparent;
+    default: return R | T | D | G | S;  // Principled: every lobe
     }
 }
 
@@ -52,8 +52,8 @@ Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken*
     m_shaders = ShaderLibrary::load(arrays);
     if (const Array* h = arrays.find("material_holdout"))
         m_material_holdout.assign(h->data<float>(), h->data<float>() + h->count());
-    m_material_inputs = load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg,
-                                             &m_material_holdout);
+    m_material_inputs =
+        load_material_inputs(arrays, *m_shaders, m_materials, &m_world_program, &m_world_reg, &m_material_holdout);
     for (float w : m_material_holdout) m_has_holdouts |= w > 0.f;
     for (const MaterialInputs& mi : m_material_inputs) {
         m_has_holdouts |= mi.holdout_reg >= 0;

@@ -15,8 +15,8 @@
 #include "core/parallel.h"
 #include "core/params.h"
 #include "core/transform.h"
-#include "lights/light.h"
 #include "lights/emitter_set.h"
+#include "lights/light.h"
 #include "lights/light_emission.h"
 #include "lights/light_sampler.h"
 #include "scene/camera.h"
@@ -31,12 +31,12 @@ class SceneArrays;
 class MeshBvhCache;
 
 struct SceneStats {
-    size_t unique_triangles = 0;    // stored once each
-    size_t instanced_triangles = 0; // what instancing would have cost flattened
+    size_t unique_triangles = 0;     // stored once each
+    size_t instanced_triangles = 0;  // what instancing would have cost flattened
     size_t meshes = 0, instances = 0, emissive_triangles = 0;
-    size_t embree_bytes = 0;        // what Embree holds: vertex/index buffers and BVHs (its memory monitor)
-    size_t shading_bytes = 0;       // Candela's per-triangle shading data and per-instance placements
-    size_t coplanar_objects = 0;    // objects with a coplanar overlapping rival (they get the tie-break filter)
+    size_t embree_bytes = 0;      // what Embree holds: vertex/index buffers and BVHs (its memory monitor)
+    size_t shading_bytes = 0;     // Candela's per-triangle shading data and per-instance placements
+    size_t coplanar_objects = 0;  // objects with a coplanar overlapping rival (they get the tie-break filter)
 };
 
 /// The triangles of one top-level object as Embree holds them (Scene::object_triangles), for samplers of
@@ -47,9 +47,9 @@ struct ObjectTriangles {
     const uint32_t* indices = nullptr;  // 3 per triangle
     uint32_t triangle_count = 0;
     bool instanced = false;
-    uint32_t mesh = 0;                  // the input mesh: the instances of one mesh share vertices and indices
-    Affine object_to_world;             // the identity for a flattened mesh (its vertices are in world space)
-    uint8_t flags = k_object_default;   // ObjectFlag bits: the ray types the object is visible to
+    uint32_t mesh = 0;                 // the input mesh: the instances of one mesh share vertices and indices
+    Affine object_to_world;            // the identity for a flattened mesh (its vertices are in world space)
+    uint8_t flags = k_object_default;  // ObjectFlag bits: the ray types the object is visible to
 };
 
 class Scene : private EmissionSource {
@@ -192,8 +192,8 @@ private:
     void build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache);
     /// The SurfaceHit of Embree's hit (geometry, triangle, instance ids, barycentrics, unnormalised Ng) at
     /// distance t along `ray`.
-    void decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t inst, float u, float v, const Vec3& ng_embree,
-                    float t, SurfaceHit* hit) const;
+    void decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t inst, float u, float v,
+                    const Vec3& ng_embree, float t, SurfaceHit* hit) const;
     /// Embree filter: drops the skipped triangles and hits on objects hidden from the ray's type and, for
     /// closest-hit queries, breaks ties between coplanar surfaces by a fixed priority instead of float rounding (no
     /// z-fighting speckle). The context filter of ray types some object is hidden from (it sees every hit).
@@ -206,11 +206,12 @@ private:
     void add_environment();
     /// Shading normal at barycentrics (b1, b2) of triangle `prim`: the interpolated smooth normal (world space),
     /// turned to the side of the unit winding normal ng; ng itself for a flat triangle.
-    static Vec3 shading_normal(const MeshShading& s, const Placement& pl, uint32_t prim, float b1, float b2, const Vec3& ng);
+    static Vec3 shading_normal(const MeshShading& s, const Placement& pl, uint32_t prim, float b1, float b2,
+                               const Vec3& ng);
     /// The shader program's inputs at a hit on placement `pl`, seen from wo (scene/shading.cpp).
     /// With `differentials`, also the offsets of Bump's finite differences (ShadingInputs::dp …).
-    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl,
-                                 bool differentials = false, const LightPathInfo* path = nullptr) const;
+    ShadingInputs shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl, bool differentials = false,
+                                 const LightPathInfo* path = nullptr) const;
     /// The Holdout weight of a material whose weight comes from its shader program, at the hit (shading.cpp).
     float varying_holdout(const SurfaceHit& hit, const Vec3& wo) const;
     /// Whether material k's emission comes from its shader program (a textured emitter).
@@ -226,26 +227,26 @@ private:
     std::shared_ptr<EmbreeDevice> m_device;  // own, or a MeshBvhCache's (declared first: released last)
     EmbreeScene m_top;
     std::vector<std::shared_ptr<EmbreeScene>> m_mesh_scenes;  // one per instanced mesh (shared with a cache)
-    std::vector<MeshShading> m_shading;      // per mesh (world space if flattened)
-    std::vector<Placement> m_placements;     // per top-level geometry id
+    std::vector<MeshShading> m_shading;                       // per mesh (world space if flattened)
+    std::vector<Placement> m_placements;                      // per top-level geometry id
     struct Emitter {
         uint32_t placement, prim;  // top-level geometry id and the mesh's triangle
     };
-    std::vector<Emitter> m_emitters;         // textured emitting triangles (TriangleLight::source_id)
-    std::vector<uint8_t> m_object_flags;     // per top-level geometry id: ObjectFlag bits
-    std::vector<float> m_material_holdout;   // per material (constant weights), or empty (no Holdout closures)
+    std::vector<Emitter> m_emitters;        // textured emitting triangles (TriangleLight::source_id)
+    std::vector<uint8_t> m_object_flags;    // per top-level geometry id: ObjectFlag bits
+    std::vector<float> m_material_holdout;  // per material (constant weights), or empty (no Holdout closures)
     bool m_has_holdouts = false;
-    uint32_t m_hidden_from = 0;              // ray types some object is invisible to (they need the filter)
-    bool m_any_coplanar = false;             // some object has the coplanar geometry filter
-    bool m_any_transparent = false;          // some material has a Transparent closure (transparent shadows)
-    bool m_world_path_dependent = false;     // the world shader reads the Light Path node
-    bool m_any_terminator_offset = false;    // some object has a shadow terminator offset
-    bool m_any_bent_normal = false;          // some material bends its normal (Bump, Normal Map): bump shadowing
-    bool m_has_motion = false;               // motion blur: the camera or an object moves over the shutter
+    uint32_t m_hidden_from = 0;            // ray types some object is invisible to (they need the filter)
+    bool m_any_coplanar = false;           // some object has the coplanar geometry filter
+    bool m_any_transparent = false;        // some material has a Transparent closure (transparent shadows)
+    bool m_world_path_dependent = false;   // the world shader reads the Light Path node
+    bool m_any_terminator_offset = false;  // some object has a shadow terminator offset
+    bool m_any_bent_normal = false;        // some material bends its normal (Bump, Normal Map): bump shadowing
+    bool m_has_motion = false;             // motion blur: the camera or an object moves over the shutter
     Camera m_camera;
     std::vector<Material> m_materials;
     std::shared_ptr<const ShaderLibrary> m_shaders;
-    std::vector<MaterialInputs> m_material_inputs;  // textured materials (Material::inputs)
+    std::vector<MaterialInputs> m_material_inputs;   // textured materials (Material::inputs)
     int32_t m_world_program = -1, m_world_reg = -1;  // the world shader, if it varies with direction
     int m_threads = 0;
     LightSet m_lights;

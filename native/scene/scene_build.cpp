@@ -50,21 +50,32 @@ struct Scene::Builder {
     const Array* terminator_arr;
     size_t mesh_count, instance_count;
     std::vector<MeshRange> ranges;
-    std::vector<uint32_t> uses;            // instances of each mesh
+    std::vector<uint32_t> uses;  // instances of each mesh
     std::vector<uint8_t> instance_coplanar, mesh_coplanar;
-    std::vector<int32_t> mesh_scene;       // index into m_mesh_scenes of an instanced mesh, −1 before it is built
-    std::vector<uint8_t> mesh_corners;     // the mesh keeps its corner positions (a shadow terminator offset)
+    std::vector<int32_t> mesh_scene;    // index into m_mesh_scenes of an instanced mesh, −1 before it is built
+    std::vector<uint8_t> mesh_corners;  // the mesh keeps its corner positions (a shadow terminator offset)
     RTCSceneFlags scene_flags = RTC_SCENE_FLAG_NONE;
 
     Builder(Scene& s, const SceneArrays& a, const CancelToken* c, MeshBvhCache* bvh_cache)
-        : scene(s), arrays(a), cancel(c), cache(bvh_cache), positions(a.get("positions").data<float>()),
-          triangles(a.get("triangles").data<uint32_t>()), tri_material(a.get("tri_material").data<uint32_t>()),
-          smooth_arr(a.find("tri_smooth")), normals_arr(a.find("normals")), vertex_normals_arr(a.find("vertex_normals")),
-          instance_mesh(a.get("instance_mesh").data<uint32_t>()), instance_xf(a.get("instance_transform").data<float>()),
-          flags_arr(a.find("instance_flags")), pass_index_arr(a.find("instance_pass_index")),
-          color_arr(a.find("instance_color")), random_arr(a.find("instance_random")),
+        : scene(s),
+          arrays(a),
+          cancel(c),
+          cache(bvh_cache),
+          positions(a.get("positions").data<float>()),
+          triangles(a.get("triangles").data<uint32_t>()),
+          tri_material(a.get("tri_material").data<uint32_t>()),
+          smooth_arr(a.find("tri_smooth")),
+          normals_arr(a.find("normals")),
+          vertex_normals_arr(a.find("vertex_normals")),
+          instance_mesh(a.get("instance_mesh").data<uint32_t>()),
+          instance_xf(a.get("instance_transform").data<float>()),
+          flags_arr(a.find("instance_flags")),
+          pass_index_arr(a.find("instance_pass_index")),
+          color_arr(a.find("instance_color")),
+          random_arr(a.find("instance_random")),
           terminator_arr(a.find("instance_terminator")),
-          mesh_count(a.rows("mesh_tri_start") - 1), instance_count(a.rows("instance_mesh")) {}
+          mesh_count(a.rows("mesh_tri_start") - 1),
+          instance_count(a.rows("instance_mesh")) {}
 
     void check_cancel() const {
         if (cancel && cancel->cancelled()) throw Cancelled();
@@ -136,7 +147,8 @@ struct Scene::Builder {
         for (size_t t = 0; t < n; ++t)
             if (scene.m_materials[s.material[t]].is_emissive() || scene.varying_emission(s.material[t]))
                 s.emissive_rank[t] = rank++;
-        if (std::any_of(s.material.begin(), s.material.end(), [&](uint32_t k) { return scene.m_materials[k].inputs >= 0; }))
+        if (std::any_of(s.material.begin(), s.material.end(),
+                        [&](uint32_t k) { return scene.m_materials[k].inputs >= 0; }))
             s.attributes = MeshAttributes::load(arrays, m, r.tri_begin, r.tri_end);
         bool any_smooth = false;
         if (smooth_arr && (normals_arr || vertex_normals_arr)) {
@@ -337,7 +349,8 @@ struct Scene::Builder {
     /// scene, with 3-5x faster builds (objects build separately).
     void add_objects() {
         scene.m_top = EmbreeScene(rtcNewScene(scene.m_device->get()));
-        rtcSetSceneBuildQuality(scene.m_top.get(), RTC_BUILD_QUALITY_LOW);  // two levels: a BVH per object, one over them
+        rtcSetSceneBuildQuality(scene.m_top.get(),
+                                RTC_BUILD_QUALITY_LOW);  // two levels: a BVH per object, one over them
         rtcSetSceneFlags(scene.m_top.get(), scene_flags);
         rtcSetSceneProgressMonitorFunction(scene.m_top.get(), &progress_monitor, const_cast<CancelToken*>(cancel));
         scene.m_shading.resize(mesh_count);
@@ -366,8 +379,10 @@ struct Scene::Builder {
             pl.object_to_world = xf;
             pl.world_to_object = xf.inverse();
             scene.m_stats.instanced_triangles += ranges[m].tri_end - ranges[m].tri_begin;
-            if (uses[m] == 1 && !cache) add_flattened(i, pl, xf, flags);
-            else add_instance(pl, xf, flags);
+            if (uses[m] == 1 && !cache)
+                add_flattened(i, pl, xf, flags);
+            else
+                add_instance(pl, xf, flags);
         }
         rtcCommitScene(scene.m_top.get());
         check_cancel();
@@ -415,9 +430,9 @@ struct Scene::Builder {
         scene.m_placements.shrink_to_fit();
         scene.m_object_flags.shrink_to_fit();
         for (const MeshShading& s : scene.m_shading)
-            scene.m_stats.shading_bytes += s.material.capacity() * sizeof(uint32_t) + s.smooth.capacity() +
-                                           s.normals.capacity() * sizeof(Vec3) + s.emissive_rank.capacity() * sizeof(int32_t) +
-                                           s.corners.capacity() * sizeof(Vec3);
+            scene.m_stats.shading_bytes +=
+                s.material.capacity() * sizeof(uint32_t) + s.smooth.capacity() + s.normals.capacity() * sizeof(Vec3) +
+                s.emissive_rank.capacity() * sizeof(int32_t) + s.corners.capacity() * sizeof(Vec3);
         scene.m_stats.shading_bytes += scene.m_placements.capacity() * sizeof(Placement);
         scene.m_stats.embree_bytes = size_t(std::max<int64_t>(scene.m_device->bytes(), 0));
     }

@@ -48,8 +48,10 @@ SurfaceHit Scene::surface_point(uint32_t object, uint32_t prim, float b1, float 
     at.o = p;
     at.d = Vec3(0.f);
     SurfaceHit hit;
-    if (t.instanced) decode_hit(at, 0u, prim, object, b1, b2, ng, 0.f, &hit);
-    else decode_hit(at, object, prim, RTC_INVALID_GEOMETRY_ID, b1, b2, ng, 0.f, &hit);
+    if (t.instanced)
+        decode_hit(at, 0u, prim, object, b1, b2, ng, 0.f, &hit);
+    else
+        decode_hit(at, object, prim, RTC_INVALID_GEOMETRY_ID, b1, b2, ng, 0.f, &hit);
     return hit;
 }
 

@@ -17,7 +17,7 @@ namespace candela {
 struct Scene::QueryContext {
     RTCIntersectContext context;
     PrimitiveRef skip[2];
-    const Scene* scene = nullptr;  // set for closest-hit queries: coplanar ties are broken
+    const Scene* scene = nullptr;           // set for closest-hit queries: coplanar ties are broken
     uint8_t ray_type = 0;                   // RayType bits checked against object_flags; 0 = no visibility check
     const uint8_t* object_flags = nullptr;  // per top-level geometry id (ObjectFlag bits)
     float origin_magnitude = 0.f, dir_length = 1.f;
@@ -65,8 +65,7 @@ void Scene::filter_hits(const RTCFilterFunctionNArguments* args) {
         const float dn = length(d) * length(ng);
         const float cos_theta = dn > 0.f ? std::fabs(dot(d, ng)) / dn : 1.f;
         const Placement& pl = ctx->scene->m_placements[top_level_id(hit)];
-        const float plane_tolerance =
-            k_coplanar_ulps * (ctx->origin_magnitude + t * ctx->dir_length + pl.magnitude);
+        const float plane_tolerance = k_coplanar_ulps * (ctx->origin_magnitude + t * ctx->dir_length + pl.magnitude);
         const float tolerance = plane_tolerance / (ctx->dir_length * std::max(cos_theta, 1e-3f));
         if (ctx->have_best && t > ctx->best_t - std::max(tolerance, ctx->best_tolerance) &&
             !ctx->scene->outranks(hit, ctx->best)) {

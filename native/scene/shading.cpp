@@ -7,8 +7,8 @@
 
 namespace candela {
 
-ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl,
-                                    bool differentials, const LightPathInfo* path) const {
+ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const Placement& pl, bool differentials,
+                                    const LightPathInfo* path) const {
     // Where on the object the hit is: UV, tangent frame, object-space position.
     const PrimitiveRef& prim = hit.primitive;
     const MeshAttributes& attr = m_shading[pl.mesh].attributes;
@@ -51,7 +51,8 @@ ShadingInputs Scene::shading_inputs(const SurfaceHit& hit, const Vec3& wo, const
         // are secants, not derivatives); a linear height gives the same normal for any frame.
         const float delta = std::fmax(m_camera.pixel_footprint(length(hit.p)), 1e-7f);
         const Vec3 n = in.backfacing ? -hit.ng : hit.ng;
-        Vec3 a = (n.x != n.y || n.x != n.z) ? Vec3(n.z - n.y, n.x - n.z, n.y - n.x) : Vec3(n.z - n.y, n.x + n.z, -n.y - n.x);
+        Vec3 a =
+            (n.x != n.y || n.x != n.z) ? Vec3(n.z - n.y, n.x - n.z, n.y - n.x) : Vec3(n.z - n.y, n.x + n.z, -n.y - n.x);
         a = normalize(a);
         in.dp[0] = a * delta;
         in.dp[1] = cross(n, a) * delta;
@@ -75,8 +76,9 @@ ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo, const LightPath
 
     const MaterialInputs& mi = m_material_inputs[size_t(material.inputs)];
     const PrimitiveRef& prim = hit.primitive;
-    const ShadingInputs in = shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom],
-                                            m_shaders->uses_differentials(mi.program), path);
+    const ShadingInputs in =
+        shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom],
+                       m_shaders->uses_differentials(mi.program), path);
     ShaderRegisters regs(m_shaders->program_size(mi.program));
     m_shaders->evaluate(mi.program, in, regs.data());
     if (mi.emission_reg >= 0) sp.emission = vmax(regs[uint32_t(mi.emission_reg)], Color(0.f));
@@ -95,8 +97,9 @@ float Scene::varying_holdout(const SurfaceHit& hit, const Vec3& wo) const {
     const MaterialInputs& mi = m_material_inputs[size_t(m_materials[hit.material].inputs)];
     const PrimitiveRef& prim = hit.primitive;
     ShaderRegisters regs(m_shaders->program_size(mi.program));
-    m_shaders->evaluate(mi.program, shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom]),
-                        regs.data());
+    m_shaders->evaluate(
+        mi.program, shading_inputs(hit, wo, m_placements[prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom]),
+        regs.data());
     return holdout_weight(regs[uint32_t(mi.holdout_reg)]);
 }
 
@@ -126,7 +129,8 @@ Color Scene::textured_emission(const Placement& pl, uint32_t prim, const Vec3& p
 Color Scene::average_emission(const Placement& pl, uint32_t prim, const Vec3 (&v)[3], const Vec3& ng) const {
     // The centroids of the four triangles of its midpoint subdivision (equal areas), seen head-on: (b1, b2)
     // pairs. An estimate only: light sampling evaluates the exact radiance at every sampled point.
-    static constexpr float k_points[4][2] = {{1.f / 3, 1.f / 3}, {1.f / 6, 1.f / 6}, {2.f / 3, 1.f / 6}, {1.f / 6, 2.f / 3}};
+    static constexpr float k_points[4][2] = {
+        {1.f / 3, 1.f / 3}, {1.f / 6, 1.f / 6}, {2.f / 3, 1.f / 6}, {1.f / 6, 2.f / 3}};
     Color sum(0.f);
     for (const auto& b : k_points) {
         const Vec3 p = v[0] * (1.f - b[0] - b[1]) + v[1] * b[0] + v[2] * b[1];

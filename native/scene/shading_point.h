@@ -13,10 +13,10 @@
 namespace candela {
 
 struct ShadingPoint {
-    Vec3 ns;               // unit shading normal on the side of the winding normal (like SurfaceHit::ns)
-    Color emission{0.f};   // emitted radiance (both sides)
+    Vec3 ns;              // unit shading normal on the side of the winding normal (like SurfaceHit::ns)
+    Color emission{0.f};  // emitted radiance (both sides)
     bool backfacing = false;
-    bool bent = false;     // a Bump or Normal Map node moved ns off the smooth normal (bump shadowing applies)
+    bool bent = false;  // a Bump or Normal Map node moved ns off the smooth normal (bump shadowing applies)
 
     const Bsdf& bsdf() const { return m_owns ? *std::launder(reinterpret_cast<const Bsdf*>(m_storage)) : *m_shared; }
     void use(const Bsdf* shared) { m_shared = shared; }

@@ -18,13 +18,13 @@ struct PrimitiveRef {
 
 struct SurfaceHit {
     float t = 0.f;
-    Vec3 p;              // world (camera-relative) position
-    Vec3 ng;             // unit geometric normal (winding orientation, not flipped toward the ray)
-    Vec3 ns;             // unit shading normal, on the same side as ng
+    Vec3 p;   // world (camera-relative) position
+    Vec3 ng;  // unit geometric normal (winding orientation, not flipped toward the ray)
+    Vec3 ns;  // unit shading normal, on the same side as ng
     uint32_t material = 0;
-    int32_t light = -1;  // index in the LightSet if the triangle emits, else −1
-    PrimitiveRef primitive;  // the triangle hit
-    uint32_t object = 0;     // top-level object (Embree geometry id) the triangle belongs to
+    int32_t light = -1;        // index in the LightSet if the triangle emits, else −1
+    PrimitiveRef primitive;    // the triangle hit
+    uint32_t object = 0;       // top-level object (Embree geometry id) the triangle belongs to
     float b1 = 0.f, b2 = 0.f;  // barycentric weights of the triangle's second and third corners
 };
 

@@ -30,7 +30,7 @@ Vec3 doubled_normal(const ObjectTriangles& t, uint32_t prim) {
 SurfaceSampler::SurfaceSampler(const Scene& scene, const CancelToken* cancel) : m_scene(scene) {
     const uint32_t n = scene.object_count();
     m_objects.resize(n);
-    m_tables.reserve(n);  // at most one table per object
+    m_tables.reserve(n);              // at most one table per object
     std::vector<int32_t> mesh_table;  // instanced meshes: their shared table, by input mesh
     std::vector<float> object_weight(n, 0.f);
     size_t since_check = 0;

@@ -58,7 +58,7 @@ public:
 private:
     struct Table {  // one per Embree triangle geometry: a flattened mesh, or a mesh shared by instances
         Distribution1D triangles;
-        double area = 0.0;  // Σ areas in the table's space
+        double area = 0.0;      // Σ areas in the table's space
         double moment[6] = {};  // Σ n nᵀ/|n| (xx, yy, zz, xy, xz, yz), instanced meshes only
     };
     struct Object {

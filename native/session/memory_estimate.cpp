@@ -16,20 +16,22 @@ namespace candela {
 namespace {
 
 // Upper bounds per element (see the header for the measurements behind the BVH figure).
-constexpr double k_bvh_bytes_per_triangle = 160.0;   // BVH nodes, spatial-split references, build temporaries
-constexpr double k_vertex_bytes = 12.0;              // Embree vertex buffer (float3)
-constexpr double k_index_bytes = 12.0;               // Embree index buffer (uint3)
-constexpr double k_shading_bytes = 9.0;              // material (4) + smooth flag (1) + emissive rank (4)
-constexpr double k_normal_bytes = 36.0;              // 3 shading normals, for meshes with smooth faces
-constexpr double k_corner_bytes = 36.0;              // 3 corner positions (smooth meshes with a terminator offset)
-constexpr double k_instance_bytes = 512.0;           // Embree instance, top-level BVH leaf, placement
-constexpr double k_light_bytes = 256.0;              // an emissive triangle's light and its light-tree share
-constexpr double k_thread_bytes = 4e6;               // per build thread: Embree's thread-local allocation blocks
+constexpr double k_bvh_bytes_per_triangle = 160.0;  // BVH nodes, spatial-split references, build temporaries
+constexpr double k_vertex_bytes = 12.0;             // Embree vertex buffer (float3)
+constexpr double k_index_bytes = 12.0;              // Embree index buffer (uint3)
+constexpr double k_shading_bytes = 9.0;             // material (4) + smooth flag (1) + emissive rank (4)
+constexpr double k_normal_bytes = 36.0;             // 3 shading normals, for meshes with smooth faces
+constexpr double k_corner_bytes = 36.0;             // 3 corner positions (smooth meshes with a terminator offset)
+constexpr double k_instance_bytes = 512.0;          // Embree instance, top-level BVH leaf, placement
+constexpr double k_light_bytes = 256.0;             // an emissive triangle's light and its light-tree share
+constexpr double k_thread_bytes = 4e6;              // per build thread: Embree's thread-local allocation blocks
 
 std::string gigabytes(double bytes) {
     char buf[32];
-    if (bytes >= 1e9) std::snprintf(buf, sizeof buf, "%.1f GB", bytes / 1e9);
-    else std::snprintf(buf, sizeof buf, "%.0f MB", std::ceil(bytes / 1e6));
+    if (bytes >= 1e9)
+        std::snprintf(buf, sizeof buf, "%.1f GB", bytes / 1e9);
+    else
+        std::snprintf(buf, sizeof buf, "%.0f MB", std::ceil(bytes / 1e6));
     return buf;
 }
 
@@ -92,8 +94,8 @@ MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, 
     if (const Array* t = arrays.find("instance_terminator"))
         for (size_t i = 0; i < instance_count; ++i)
             if (t->data<float>()[i] > 0.f) terminator[instance_mesh[i]] = 1;
-    const uint8_t* smooth_any = smooth_arr && (arrays.has("normals") || arrays.has("vertex_normals"))
-                                    ? smooth_arr->data<uint8_t>() : nullptr;
+    const uint8_t* smooth_any =
+        smooth_arr && (arrays.has("normals") || arrays.has("vertex_normals")) ? smooth_arr->data<uint8_t>() : nullptr;
     e.mesh_bytes.assign(mesh_count, 0.0);
     double biggest = -1.0;
     for (size_t m = 0; m < mesh_count; ++m) {
@@ -114,7 +116,8 @@ MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, 
         const double vertices = double(vhi) - double(vlo) + 1.0;
         // One geometry and BVH per mesh (a single-use mesh is flattened into the top-level BVH, the same cost),
         // per use: an instance (if shared) and the emissive triangles' lights.
-        double bytes = vertices * k_vertex_bytes + double(n) * (k_index_bytes + k_shading_bytes + k_bvh_bytes_per_triangle);
+        double bytes =
+            vertices * k_vertex_bytes + double(n) * (k_index_bytes + k_shading_bytes + k_bvh_bytes_per_triangle);
         if (any_smooth) bytes += double(n) * k_normal_bytes;
         if (any_smooth_faces && terminator[m]) bytes += double(n) * k_corner_bytes;
         if (uses[m] > 1) bytes += double(uses[m]) * k_instance_bytes;
@@ -127,15 +130,16 @@ MemoryEstimate estimate_memory(const SceneArrays& arrays, const Params& params, 
             e.biggest_mesh_triangles = n;
         }
     }
-    if (e.geometry_bytes > 0.0) e.geometry_bytes += k_thread_bytes * resolve_thread_count(params.get<int>("threads", 0));
+    if (e.geometry_bytes > 0.0)
+        e.geometry_bytes += k_thread_bytes * resolve_thread_count(params.get<int>("threads", 0));
     return e;
 }
 
 std::string MemoryEstimate::refusal(const std::vector<std::string>& mesh_names) const {
     std::string s = "the render needs about " + gigabytes(total_bytes()) + " of memory (scene " +
                     gigabytes(geometry_bytes) + ", film " + gigabytes(film_bytes) +
-                    (integrator_bytes > 0.0 ? ", integrator " + gigabytes(integrator_bytes) : std::string()) + ") but only " +
-                    gigabytes(limit_bytes) + " are available (" + limit_source + ")";
+                    (integrator_bytes > 0.0 ? ", integrator " + gigabytes(integrator_bytes) : std::string()) +
+                    ") but only " + gigabytes(limit_bytes) + " are available (" + limit_source + ")";
     if (integrator_bytes > geometry_bytes && integrator_bytes > film_bytes) {
         s += "; most of it is the integrator's own data (" + gigabytes(integrator_bytes) +
              "): lower its budget in its settings";

@@ -23,10 +23,10 @@ namespace candela {
 struct MemoryEstimate {
     double geometry_bytes = 0.0;  // meshes, BVH (peak while building), lights
     double film_bytes = 0.0;
-    double integrator_bytes = 0.0;  // the integrator's own data (IntegratorEntry::memory_bytes)
-    double limit_bytes = 0.0;     // what may be allocated (0: unknown, nothing is refused)
-    std::string limit_source;     // "memory_limit_mb" or "available memory (MemAvailable)"
-    std::vector<double> mesh_bytes;           // per mesh, every instance included
+    double integrator_bytes = 0.0;   // the integrator's own data (IntegratorEntry::memory_bytes)
+    double limit_bytes = 0.0;        // what may be allocated (0: unknown, nothing is refused)
+    std::string limit_source;        // "memory_limit_mb" or "available memory (MemAvailable)"
+    std::vector<double> mesh_bytes;  // per mesh, every instance included
     int64_t biggest_mesh = -1;
     size_t biggest_mesh_triangles = 0;
 

@@ -13,12 +13,12 @@ namespace candela {
 
 const char* phase_name(SessionPhase p) {
     switch (p) {
-        case SessionPhase::Idle: return "idle";
-        case SessionPhase::Building: return "building";
-        case SessionPhase::Rendering: return "rendering";
-        case SessionPhase::Done: return "done";
-        case SessionPhase::Cancelled: return "cancelled";
-        default: return "failed";
+    case SessionPhase::Idle: return "idle";
+    case SessionPhase::Building: return "building";
+    case SessionPhase::Rendering: return "rendering";
+    case SessionPhase::Done: return "done";
+    case SessionPhase::Cancelled: return "cancelled";
+    default: return "failed";
     }
 }
 
@@ -57,8 +57,8 @@ Session::Session(SceneArrays arrays, Params params)
     const MemoryEstimate memory = estimate_memory(*m_arrays, m_params);
     if (!memory.fits()) {
         if (memory.film_bytes > memory.geometry_bytes)
-            throw InvalidParameter("a " + std::to_string(x1 - x0) + "x" + std::to_string(y1 - y0) + " render: " +
-                                   memory.refusal());
+            throw InvalidParameter("a " + std::to_string(x1 - x0) + "x" + std::to_string(y1 - y0) +
+                                   " render: " + memory.refusal());
         throw InvalidScene(memory.refusal());
     }
     m_exposure = m_params.get<float>("film_exposure", 1.f);
@@ -133,8 +133,7 @@ void Session::run() {
     m_stats.paths = m_counters.paths;
     m_stats.rays = m_counters.rays;
     m_stats.nan_samples = m_counters.nan_samples;
-    if (m_stats.render_seconds > 0)
-        m_stats.samples_per_second = double(m_stats.paths) / m_stats.render_seconds;
+    if (m_stats.render_seconds > 0) m_stats.samples_per_second = double(m_stats.paths) / m_stats.render_seconds;
     if (m_stats.nan_samples)
         m_log.add(std::to_string(m_stats.nan_samples) + " non-finite or negative samples were dropped");
     m_finished = true;
@@ -167,8 +166,7 @@ SessionProgress Session::progress() const {
     p.relative_error = m_counters.relative_error;
     p.stop_reason = StopReason(m_counters.stop_reason.load());
     if (m_phase == SessionPhase::Done) p.fraction = 1.0;
-    if (m_started)
-        p.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start_time).count();
+    if (m_started) p.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start_time).count();
     return p;
 }
 

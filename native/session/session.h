@@ -17,8 +17,8 @@
 #include "core/params.h"
 #include "film/aov_film.h"
 #include "film/film.h"
-#include "integrators/integrator.h"
 #include "input/scene_arrays.h"
+#include "integrators/integrator.h"
 #include "session/memory_estimate.h"
 
 namespace candela {
@@ -33,7 +33,7 @@ struct SessionProgress {
     StageProgress::Snapshot stage;  // a named stage with its own progress (a pre-pass), or none
     std::string method;             // the method the status names when not the chosen integrator (AUTO's choice)
     double fraction = 0.0;
-    double elapsed_s = 0.0;  // since start()
+    double elapsed_s = 0.0;        // since start()
     double relative_error = -1.0;  // estimated relative RMSE of the image (< 0: not known yet)
     StopReason stop_reason = StopReason::Running;
 };

@@ -1,9 +1,9 @@
 #include "session/viewport_session.h"
 
+#include <pthread.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <pthread.h>
 
 #include "core/error.h"
 #include "integrators/integrator.h"
@@ -226,7 +226,7 @@ void ViewportSession::process(Request& r) {
     }
     if (!m_scene || !r.settings || !r.view) {
         std::lock_guard<std::mutex> lock(m_mutex);
-        m_status.phase = m_build_error ? "failed" : "idle";   // a scene that cannot be built stays failed
+        m_status.phase = m_build_error ? "failed" : "idle";  // a scene that cannot be built stays failed
         return;
     }
     render_view(*r.settings, *r.view, r.view_xf, r.restart);
@@ -287,8 +287,9 @@ void ViewportSession::render_view(const Params& settings, const Params& view, co
             m_status.film_bytes = size_t(double(film->width()) * film->height() * film_bytes_per_pixel());
         }
         // The render settings' thread count (Blender's Performance > Threads), else the session's.
-        RenderContext ctx{*cancel, *counters, p.has("threads") ? resolve_thread_count(p.get<int>("threads", 0)) : m_threads,
-                          nullptr, &m_log};
+        RenderContext ctx{*cancel, *counters,
+                          p.has("threads") ? resolve_thread_count(p.get<int>("threads", 0)) : m_threads, nullptr,
+                          &m_log};
         integrator->render(*m_scene, *film, ctx);
         std::lock_guard<std::mutex> lock(m_mutex);
         if (cancel->cancelled() || restart != m_restarts) return;

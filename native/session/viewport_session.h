@@ -41,25 +41,25 @@ class MeshBvhCache;
 class Scene;
 
 struct ViewportImage {
-    uint64_t version = 0;      // grows with every change of what image() returns
-    uint64_t request = 0;      // the request (update_scene/update_settings/set_view) whose render it is
+    uint64_t version = 0;                   // grows with every change of what image() returns
+    uint64_t request = 0;                   // the request (update_scene/update_settings/set_view) whose render it is
     int frame_width = 0, frame_height = 0;  // the view's frame in this level's pixels
-    int x0 = 0, y0 = 0;        // the film's origin in that frame (a render border)
-    int width = 0, height = 0; // the film
-    int pixel_size = 1;        // view pixels per film pixel (about: the frame is rounded up)
-    int samples = 0;           // samples per pixel the film has (at least)
-    std::vector<float> rgba;   // width × height RGBA, rows bottom to top
+    int x0 = 0, y0 = 0;                     // the film's origin in that frame (a render border)
+    int width = 0, height = 0;              // the film
+    int pixel_size = 1;                     // view pixels per film pixel (about: the frame is rounded up)
+    int samples = 0;                        // samples per pixel the film has (at least)
+    std::vector<float> rgba;                // width × height RGBA, rows bottom to top
 };
 
 struct ViewportStatus {
     std::string phase = "idle";  // idle, pending (a request not taken yet), building, rendering, done, failed, stopped
     int samples_done = 0, samples_total = 0;
-    int pixel_size = 0;          // of the level being rendered
-    double build_seconds = 0.0;  // of the latest scene build
+    int pixel_size = 0;                    // of the level being rendered
+    double build_seconds = 0.0;            // of the latest scene build
     double seconds_to_first_image = -1.0;  // from the latest restart to its first image (< 0: none yet)
     size_t scene_bytes = 0, film_bytes = 0;
     size_t bvh_built = 0, bvh_reused = 0;  // mesh BVHs built / taken from the cache, over the session
-    std::string note;            // the viewport renders with PATH instead of the chosen integrator, and why ("": not)
+    std::string note;  // the viewport renders with PATH instead of the chosen integrator, and why ("": not)
     std::optional<std::string> error;
 };
 
@@ -116,7 +116,7 @@ private:
     std::optional<Params> m_settings;
     std::optional<Params> m_view;
     Affine m_view_xf;
-    uint64_t m_restarts = 0;                      // requests so far
+    uint64_t m_restarts = 0;                       // requests so far
     std::shared_ptr<CancelToken> m_render_cancel;  // of the render in progress
     std::shared_ptr<CancelToken> m_build_cancel;   // of the scene build in progress
 
@@ -134,7 +134,7 @@ private:
     std::chrono::steady_clock::time_point m_restart_time;
     ViewportStatus m_status;
     std::optional<std::string> m_build_error;  // until the next update_scene
-    MessageLog m_log;  // the scene build's and the integrators' lines (ctx.log), drained by take_log
+    MessageLog m_log;      // the scene build's and the integrators' lines (ctx.log), drained by take_log
     std::thread m_worker;  // last: started after everything above exists
 };
 

@@ -11,9 +11,12 @@ float hue_of(const Color& c, float hi, float lo) {
     const float delta = hi - lo;
     if (!(delta > 0.f)) return 0.f;
     float h;
-    if (c.x == hi) h = (c.y - c.z) / delta;
-    else if (c.y == hi) h = 2.f + (c.z - c.x) / delta;
-    else h = 4.f + (c.x - c.y) / delta;
+    if (c.x == hi)
+        h = (c.y - c.z) / delta;
+    else if (c.y == hi)
+        h = 2.f + (c.z - c.x) / delta;
+    else
+        h = 4.f + (c.x - c.y) / delta;
     h /= 6.f;
     return h < 0.f ? h + 1.f : h;
 }

@@ -9,9 +9,33 @@
 namespace candela {
 
 enum class VectorMathOp : uint32_t {
-    Add, Subtract, Multiply, Divide, MultiplyAdd, CrossProduct, Project, Reflect, Refract, Faceforward, DotProduct,
-    Distance, Length, Scale, Normalize, Absolute, Minimum, Maximum, Floor, Ceil, Fraction, Modulo, Wrap, Snap,
-    Sine, Cosine, Tangent
+    Add,
+    Subtract,
+    Multiply,
+    Divide,
+    MultiplyAdd,
+    CrossProduct,
+    Project,
+    Reflect,
+    Refract,
+    Faceforward,
+    DotProduct,
+    Distance,
+    Length,
+    Scale,
+    Normalize,
+    Absolute,
+    Minimum,
+    Maximum,
+    Floor,
+    Ceil,
+    Fraction,
+    Modulo,
+    Wrap,
+    Snap,
+    Sine,
+    Cosine,
+    Tangent
 };
 /// The Vector Math node: a, b, c are its three vector sockets, except SCALE and REFRACT, whose Scale socket
 /// (the factor, the IOR) arrives as c.x. Value results (dot, distance, length) come back in *value.

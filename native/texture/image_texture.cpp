@@ -51,16 +51,15 @@ void accumulate(Rgba& sum, const Rgba& t, float w) {
 bool resolve(const ImageTexture& img, TexExtension ext, int* x, int* y) {
     const int w = int(img.width), h = int(img.height);
     switch (ext) {
-        case TexExtension::Repeat:
-            *x = wrap_periodic(*x, w);
-            *y = wrap_periodic(*y, h);
-            return true;
-        case TexExtension::Extend:
-            *x = std::min(std::max(*x, 0), w - 1);
-            *y = std::min(std::max(*y, 0), h - 1);
-            return true;
-        case TexExtension::Clip:
-            return *x >= 0 && *x < w && *y >= 0 && *y < h;
+    case TexExtension::Repeat:
+        *x = wrap_periodic(*x, w);
+        *y = wrap_periodic(*y, h);
+        return true;
+    case TexExtension::Extend:
+        *x = std::min(std::max(*x, 0), w - 1);
+        *y = std::min(std::max(*y, 0), h - 1);
+        return true;
+    case TexExtension::Clip: return *x >= 0 && *x < w && *y >= 0 && *y < h;
     }
     return false;
 }
@@ -86,28 +85,28 @@ Rgba ImageTexture::lookup(float u, float v, TexInterpolation interpolation, TexE
     Rgba out;
     float fx, fy;
     switch (interpolation) {
-        case TexInterpolation::Closest: {
-            const int x = split(u * float(width), &fx), y = split(v * float(height), &fy);
-            out = fetch(*this, extension, x, y);
-            break;
-        }
-        case TexInterpolation::Linear: {
-            const int x = split(u * float(width) - 0.5f, &fx), y = split(v * float(height) - 0.5f, &fy);
-            out = scaled(fetch(*this, extension, x, y), (1.f - fx) * (1.f - fy));
-            accumulate(out, fetch(*this, extension, x + 1, y), fx * (1.f - fy));
-            accumulate(out, fetch(*this, extension, x, y + 1), (1.f - fx) * fy);
-            accumulate(out, fetch(*this, extension, x + 1, y + 1), fx * fy);
-            break;
-        }
-        case TexInterpolation::Cubic: {
-            const int x = split(u * float(width) - 0.5f, &fx), y = split(v * float(height) - 0.5f, &fy);
-            float wx[4], wy[4];
-            bspline_weights(fx, wx);
-            bspline_weights(fy, wy);
-            for (int j = 0; j < 4; ++j)
-                for (int i = 0; i < 4; ++i) accumulate(out, fetch(*this, extension, x - 1 + i, y - 1 + j), wx[i] * wy[j]);
-            break;
-        }
+    case TexInterpolation::Closest: {
+        const int x = split(u * float(width), &fx), y = split(v * float(height), &fy);
+        out = fetch(*this, extension, x, y);
+        break;
+    }
+    case TexInterpolation::Linear: {
+        const int x = split(u * float(width) - 0.5f, &fx), y = split(v * float(height) - 0.5f, &fy);
+        out = scaled(fetch(*this, extension, x, y), (1.f - fx) * (1.f - fy));
+        accumulate(out, fetch(*this, extension, x + 1, y), fx * (1.f - fy));
+        accumulate(out, fetch(*this, extension, x, y + 1), (1.f - fx) * fy);
+        accumulate(out, fetch(*this, extension, x + 1, y + 1), fx * fy);
+        break;
+    }
+    case TexInterpolation::Cubic: {
+        const int x = split(u * float(width) - 0.5f, &fx), y = split(v * float(height) - 0.5f, &fy);
+        float wx[4], wy[4];
+        bspline_weights(fx, wx);
+        bspline_weights(fy, wy);
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) accumulate(out, fetch(*this, extension, x - 1 + i, y - 1 + j), wx[i] * wy[j]);
+        break;
+    }
     }
     if (color_space == TexColorSpace::Srgb) out.rgb = srgb_to_linear(out.rgb);
     return out;

@@ -33,8 +33,8 @@ struct Rgba {
 /// A view of one image in the scene's texel pools (RGBA per texel, rows bottom to top): float32 texels, or
 /// 8-bit texels (4 bytes each, value/255) for images Blender holds as bytes — a quarter of the memory.
 struct ImageTexture {
-    const float* texels = nullptr;  // float storage, or
-    const uint8_t* bytes = nullptr; // 8-bit storage
+    const float* texels = nullptr;   // float storage, or
+    const uint8_t* bytes = nullptr;  // 8-bit storage
     uint32_t width = 0, height = 0;
     TexColorSpace color_space = TexColorSpace::Linear;
 

@@ -13,10 +13,46 @@ namespace candela {
 
 /// Blender's ShaderNodeMath operations, by their RNA identifiers (math_op_names()).
 enum class MathOp : uint32_t {
-    Add, Subtract, Multiply, Divide, MultiplyAdd, Power, Logarithm, Sqrt, InverseSqrt, Absolute, Exponent,
-    Minimum, Maximum, LessThan, GreaterThan, Sign, Compare, SmoothMin, SmoothMax, Round, Floor, Ceil, Trunc,
-    Fract, Modulo, Wrap, Snap, Pingpong, Sine, Cosine, Tangent, Arcsine, Arccosine, Arctangent, Arctan2, Sinh,
-    Cosh, Tanh, Radians, Degrees
+    Add,
+    Subtract,
+    Multiply,
+    Divide,
+    MultiplyAdd,
+    Power,
+    Logarithm,
+    Sqrt,
+    InverseSqrt,
+    Absolute,
+    Exponent,
+    Minimum,
+    Maximum,
+    LessThan,
+    GreaterThan,
+    Sign,
+    Compare,
+    SmoothMin,
+    SmoothMax,
+    Round,
+    Floor,
+    Ceil,
+    Trunc,
+    Fract,
+    Modulo,
+    Wrap,
+    Snap,
+    Pingpong,
+    Sine,
+    Cosine,
+    Tangent,
+    Arcsine,
+    Arccosine,
+    Arctangent,
+    Arctan2,
+    Sinh,
+    Cosh,
+    Tanh,
+    Radians,
+    Degrees
 };
 const std::vector<std::string>& math_op_names();
 
@@ -25,8 +61,24 @@ float math_op(MathOp op, float a, float b, float c);
 
 /// Blender's colour blend types (Mix node with data type Color, legacy MixRGB), by RNA identifier.
 enum class MixBlend : uint32_t {
-    Mix, Darken, Multiply, Burn, Lighten, Screen, Dodge, Add, Overlay, SoftLight, LinearLight, Difference,
-    Subtract, Divide, Hue, Saturation, Value, Color
+    Mix,
+    Darken,
+    Multiply,
+    Burn,
+    Lighten,
+    Screen,
+    Dodge,
+    Add,
+    Overlay,
+    SoftLight,
+    LinearLight,
+    Difference,
+    Subtract,
+    Divide,
+    Hue,
+    Saturation,
+    Value,
+    Color
 };
 const std::vector<std::string>& mix_blend_names();
 

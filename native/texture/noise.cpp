@@ -137,72 +137,72 @@ float musgrave(const V& p0, const MusgraveParams& m) {
     const float rmd = octaves - std::floor(octaves);
     const float pw_hl = std::pow(lac, -H);
     switch (m.type) {
-        case MusgraveType::Fbm: {
-            float value = 0.f, pwr = 1.f;
-            for (int i = 0; i < n; ++i) {
-                value += snoise(p) * pwr;
-                pwr *= pw_hl;
-                p = p * lac;
-            }
-            if (rmd != 0.f) value += rmd * snoise(p) * pwr;
-            return value;
-        }
-        case MusgraveType::Multifractal: {
-            float value = 1.f, pwr = 1.f;
-            for (int i = 0; i < n; ++i) {
-                value *= pwr * snoise(p) + 1.f;
-                pwr *= pw_hl;
-                p = p * lac;
-            }
-            if (rmd != 0.f) value *= rmd * pwr * snoise(p) + 1.f;
-            return value;
-        }
-        case MusgraveType::HeteroTerrain: {
-            float pwr = pw_hl;
-            float value = m.offset + snoise(p);  // the first octave unscaled
+    case MusgraveType::Fbm: {
+        float value = 0.f, pwr = 1.f;
+        for (int i = 0; i < n; ++i) {
+            value += snoise(p) * pwr;
+            pwr *= pw_hl;
             p = p * lac;
-            for (int i = 1; i < n; ++i) {
-                value += (snoise(p) + m.offset) * pwr * value;
-                pwr *= pw_hl;
-                p = p * lac;
-            }
-            if (rmd != 0.f) value += rmd * (snoise(p) + m.offset) * pwr * value;
-            return value;
         }
-        case MusgraveType::HybridMultifractal: {
-            float pwr = pw_hl;
-            float value = snoise(p) + m.offset;
-            float weight = m.gain * value;
+        if (rmd != 0.f) value += rmd * snoise(p) * pwr;
+        return value;
+    }
+    case MusgraveType::Multifractal: {
+        float value = 1.f, pwr = 1.f;
+        for (int i = 0; i < n; ++i) {
+            value *= pwr * snoise(p) + 1.f;
+            pwr *= pw_hl;
             p = p * lac;
-            for (int i = 1; weight > 0.001f && i < n; ++i) {
-                weight = std::fmin(weight, 1.f);
-                const float signal = (snoise(p) + m.offset) * pwr;
-                pwr *= pw_hl;
-                value += weight * signal;
-                weight *= m.gain * signal;
-                p = p * lac;
-            }
-            if (rmd != 0.f && weight > 0.001f) {
-                weight = std::fmin(weight, 1.f);
-                value += rmd * weight * (snoise(p) + m.offset) * pwr;
-            }
-            return value;
         }
-        case MusgraveType::RidgedMultifractal: {
-            float pwr = pw_hl;
-            float signal = m.offset - std::fabs(snoise(p));
-            signal *= signal;
-            float value = signal;
-            for (int i = 1; i < n; ++i) {
-                p = p * lac;
-                const float weight = clamp(signal * m.gain, 0.f, 1.f);
-                signal = m.offset - std::fabs(snoise(p));
-                signal *= signal * weight;
-                value += signal * pwr;
-                pwr *= pw_hl;
-            }
-            return value;
+        if (rmd != 0.f) value *= rmd * pwr * snoise(p) + 1.f;
+        return value;
+    }
+    case MusgraveType::HeteroTerrain: {
+        float pwr = pw_hl;
+        float value = m.offset + snoise(p);  // the first octave unscaled
+        p = p * lac;
+        for (int i = 1; i < n; ++i) {
+            value += (snoise(p) + m.offset) * pwr * value;
+            pwr *= pw_hl;
+            p = p * lac;
         }
+        if (rmd != 0.f) value += rmd * (snoise(p) + m.offset) * pwr * value;
+        return value;
+    }
+    case MusgraveType::HybridMultifractal: {
+        float pwr = pw_hl;
+        float value = snoise(p) + m.offset;
+        float weight = m.gain * value;
+        p = p * lac;
+        for (int i = 1; weight > 0.001f && i < n; ++i) {
+            weight = std::fmin(weight, 1.f);
+            const float signal = (snoise(p) + m.offset) * pwr;
+            pwr *= pw_hl;
+            value += weight * signal;
+            weight *= m.gain * signal;
+            p = p * lac;
+        }
+        if (rmd != 0.f && weight > 0.001f) {
+            weight = std::fmin(weight, 1.f);
+            value += rmd * weight * (snoise(p) + m.offset) * pwr;
+        }
+        return value;
+    }
+    case MusgraveType::RidgedMultifractal: {
+        float pwr = pw_hl;
+        float signal = m.offset - std::fabs(snoise(p));
+        signal *= signal;
+        float value = signal;
+        for (int i = 1; i < n; ++i) {
+            p = p * lac;
+            const float weight = clamp(signal * m.gain, 0.f, 1.f);
+            signal = m.offset - std::fabs(snoise(p));
+            signal *= signal * weight;
+            value += signal * pwr;
+            pwr *= pw_hl;
+        }
+        return value;
+    }
     }
     return 0.f;
 }

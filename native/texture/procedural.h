@@ -22,7 +22,12 @@ void white_noise_texture(int dims, const Vec4& p, float* value, Vec3* color);
 float musgrave_texture(int dims, const Vec4& p, float scale, const MusgraveParams& m);
 
 enum class WaveType : uint32_t { Bands, Rings };
-enum class WaveDirection : uint32_t { X, Y, Z, DiagonalOrSpherical };  // bands: X, Y, Z, DIAGONAL; rings: X, Y, Z, SPHERICAL
+enum class WaveDirection : uint32_t {
+    X,
+    Y,
+    Z,
+    DiagonalOrSpherical
+};  // bands: X, Y, Z, DIAGONAL; rings: X, Y, Z, SPHERICAL
 enum class WaveProfile : uint32_t { Sine, Saw, Triangle };
 struct WaveParams {
     WaveType type = WaveType::Bands;

@@ -39,35 +39,35 @@ enum class ShaderOpCode : uint32_t {
     BrightContrast,  // a: colour, b: bright, c: contrast
     // Procedural textures (texture/procedural.h, texture/voronoi.h). "(x, y, z)" is one register's channels; a
     // "register i_k" immediate names a further input register (shader_op_register_immediates()).
-    TexNoise,        // a: vector, b: (w, scale, detail), c: (roughness, distortion, -); i0: dimensions, i1: 0 fac, 1 colour
-    TexWhiteNoise,   // a: vector, b: (w, -, -); i0: dimensions, i1: 0 value, 1 colour
-    TexMusgrave,     // a: vector, b: (w, scale, detail), c: (dimension, lacunarity, offset); i0: register (gain);
-                     // i1: dimensions, i2: musgrave_types
-    TexVoronoi,      // a: vector, b: (w, scale, smoothness), c: (exponent, randomness, -); i0: dimensions,
-                     // i1: voronoi_features, i2: voronoi_metrics, i3: 0 distance, 1 colour, 2 position, 3 w, 4 radius
-    TexWave,         // a: vector, b: (scale, distortion, detail), c: (detail scale, detail roughness, phase);
-                     // i0: wave_types, i1: direction (X, Y, Z, diagonal/spherical), i2: wave_profiles
-    TexMagic,        // a: vector, b: (scale, distortion, -); i0: depth, i1: 0 colour, 1 fac
-    TexChecker,      // a: vector, b: colour 1, c: colour 2; i0: register (scale); i1: 0 colour, 1 fac
-    TexGradient,     // a: vector; i0: gradient_types
-    TexBrick,        // a: vector, b: colour 1, c: colour 2; i0: register (mortar colour), i1: register (scale,
-                     // mortar size, mortar smooth), i2: register (bias, brick width, row height); i3: offset of 5
-                     // constants (offset, offset frequency, squash, squash frequency, output: 0 colour, 1 fac)
+    TexNoise,  // a: vector, b: (w, scale, detail), c: (roughness, distortion, -); i0: dimensions, i1: 0 fac, 1 colour
+    TexWhiteNoise,  // a: vector, b: (w, -, -); i0: dimensions, i1: 0 value, 1 colour
+    TexMusgrave,    // a: vector, b: (w, scale, detail), c: (dimension, lacunarity, offset); i0: register (gain);
+                    // i1: dimensions, i2: musgrave_types
+    TexVoronoi,     // a: vector, b: (w, scale, smoothness), c: (exponent, randomness, -); i0: dimensions,
+                    // i1: voronoi_features, i2: voronoi_metrics, i3: 0 distance, 1 colour, 2 position, 3 w, 4 radius
+    TexWave,        // a: vector, b: (scale, distortion, detail), c: (detail scale, detail roughness, phase);
+                    // i0: wave_types, i1: direction (X, Y, Z, diagonal/spherical), i2: wave_profiles
+    TexMagic,       // a: vector, b: (scale, distortion, -); i0: depth, i1: 0 colour, 1 fac
+    TexChecker,     // a: vector, b: colour 1, c: colour 2; i0: register (scale); i1: 0 colour, 1 fac
+    TexGradient,    // a: vector; i0: gradient_types
+    TexBrick,       // a: vector, b: colour 1, c: colour 2; i0: register (mortar colour), i1: register (scale,
+                    // mortar size, mortar smooth), i2: register (bias, brick width, row height); i3: offset of 5
+                    // constants (offset, offset frequency, squash, squash frequency, output: 0 colour, 1 fac)
     // Input and converter nodes.
-    VectorMath,      // a, b, c vectors; i0: vector_math_ops, i1: 0 vector result, 1 value result
-    MapRange,        // a: value(s), b: from min, c: from max; i0: register (to min), i1: register (to max),
-                     // i2: register (steps); i3: map_range_types | clamp << 8
-    HueSaturation,   // a: colour, b: (hue, saturation, value), c: fac
-    LayerWeight,     // a: normal, b: blend; i0: 0 Fresnel, 1 Facing
-    Fresnel,         // a: normal, b: IOR
-    Bump,            // a, b, c: height at the point and at its two offsets; i0: register (strength, distance, -),
-                     // i1: register (normal), i2: invert
-    Attribute,       // i0: attribute slot (`corner_attributes`), i1: 0 colour/vector, 1 fac (mean of x, y, z), 2 alpha
-    Sky,             // a: direction; i0: offset of the model's precomputed state in shader_consts, i1: sky_models
-    Curves,          // a: fac, b: value(s); i0: ramp (the curves baked over [min x, max x]), i1: offset of (min x,
-                     // x range) in shader_consts, i2: 0 per channel (RGB/Vector Curves), 1 one value (Float Curve)
-    Blackbody,       // a: temperature (K) → colour of luminance 1
-    Wavelength,      // a: wavelength (nm) → colour (the Wavelength node: the CIE 1931 observer in Rec.709)
+    VectorMath,     // a, b, c vectors; i0: vector_math_ops, i1: 0 vector result, 1 value result
+    MapRange,       // a: value(s), b: from min, c: from max; i0: register (to min), i1: register (to max),
+                    // i2: register (steps); i3: map_range_types | clamp << 8
+    HueSaturation,  // a: colour, b: (hue, saturation, value), c: fac
+    LayerWeight,    // a: normal, b: blend; i0: 0 Fresnel, 1 Facing
+    Fresnel,        // a: normal, b: IOR
+    Bump,           // a, b, c: height at the point and at its two offsets; i0: register (strength, distance, -),
+                    // i1: register (normal), i2: invert
+    Attribute,      // i0: attribute slot (`corner_attributes`), i1: 0 colour/vector, 1 fac (mean of x, y, z), 2 alpha
+    Sky,            // a: direction; i0: offset of the model's precomputed state in shader_consts, i1: sky_models
+    Curves,         // a: fac, b: value(s); i0: ramp (the curves baked over [min x, max x]), i1: offset of (min x,
+                    // x range) in shader_consts, i2: 0 per channel (RGB/Vector Curves), 1 one value (Float Curve)
+    Blackbody,      // a: temperature (K) → colour of luminance 1
+    Wavelength,     // a: wavelength (nm) → colour (the Wavelength node: the CIE 1931 observer in Rec.709)
 };
 /// Bit k set: immediate i_k of the operation is a register it reads (validated like a, b, c).
 uint32_t shader_op_register_immediates(ShaderOpCode code);
@@ -82,19 +82,44 @@ const std::vector<std::string>& shader_op_names();
 /// TRUE_NORMAL are on the winding side. The world: GENERATED, OBJECT, POSITION, REFLECTION and INCOMING are the
 /// view direction, the normals its opposite, UV and OBJECT_LOCATION 0.
 enum class CoordKind : uint32_t {
-    Uv, Generated, Object, Normal, WorldNormal, Incoming, Position, TrueNormal, Backfacing, Reflection, ObjectLocation,
+    Uv,
+    Generated,
+    Object,
+    Normal,
+    WorldNormal,
+    Incoming,
+    Position,
+    TrueNormal,
+    Backfacing,
+    Reflection,
+    ObjectLocation,
     ObjectIndex,  // the object's pass index (Object Info > Object Index)
     Tangent,      // Geometry > Tangent: the tangent around the object's Z axis of Generated space (Cycles' default)
     // The Light Path node (ShadingInputs::path): 1 or 0 for the ray-type outputs, the counts as values.
-    IsCameraRay, IsShadowRay, IsDiffuseRay, IsGlossyRay, IsSingularRay, IsReflectionRay, IsTransmissionRay,
-    RayLength, RayDepth, DiffuseDepth, GlossyDepth, TransparentDepth, TransmissionDepth,
+    IsCameraRay,
+    IsShadowRay,
+    IsDiffuseRay,
+    IsGlossyRay,
+    IsSingularRay,
+    IsReflectionRay,
+    IsTransmissionRay,
+    RayLength,
+    RayDepth,
+    DiffuseDepth,
+    GlossyDepth,
+    TransparentDepth,
+    TransmissionDepth,
     // Object Info > Color, Alpha and Random (the object's colour, its alpha, a hash of its name in [0, 1)).
-    ObjectColor, ObjectAlpha, ObjectRandom,
+    ObjectColor,
+    ObjectAlpha,
+    ObjectRandom,
     // Texture Coordinate > Window: the point's position on the camera's image, (0, 0) bottom left to (1, 1), z 0.
     Window,
 };
 /// True for the Light Path node's kinds (they depend on the path, not on the point).
-inline bool is_light_path_coord(CoordKind k) { return k >= CoordKind::IsCameraRay && k <= CoordKind::TransmissionDepth; }
+inline bool is_light_path_coord(CoordKind k) {
+    return k >= CoordKind::IsCameraRay && k <= CoordKind::TransmissionDepth;
+}
 // Procedural-texture enumerations by their Blender identifiers.
 const std::vector<std::string>& musgrave_type_names();
 const std::vector<std::string>& voronoi_feature_names();
@@ -131,8 +156,13 @@ Vec3 equirectangular_to_direction(float u, float v);
 /// evaluation has them, and depth is the shading vertex's depth + 1.
 struct LightPathInfo {
     enum Flag : uint32_t {
-        k_camera = 1u << 0, k_shadow = 1u << 1, k_diffuse = 1u << 2, k_glossy = 1u << 3, k_singular = 1u << 4,
-        k_reflection = 1u << 5, k_transmission = 1u << 6,
+        k_camera = 1u << 0,
+        k_shadow = 1u << 1,
+        k_diffuse = 1u << 2,
+        k_glossy = 1u << 3,
+        k_singular = 1u << 4,
+        k_reflection = 1u << 5,
+        k_transmission = 1u << 6,
     };
     uint32_t flags = 0;
     float ray_length = 0.f;  // length of the ray segment that reached the point (Cycles' sd->ray_length)
@@ -149,9 +179,9 @@ struct ShadingInputs {
     Vec3 tangent{0.f};
     float tangent_sign = 1.f;
     bool has_tangent = false;
-    Affine normal_to_world;  // object → world for normals (object-space normal maps)
-    bool backfacing = false;  // the viewer is on the back (against the winding normal): Cycles flips N there
-    Vec3 position{0.f};       // world position (Blender's origin, not camera-relative)
+    Affine normal_to_world;           // object → world for normals (object-space normal maps)
+    bool backfacing = false;          // the viewer is on the back (against the winding normal): Cycles flips N there
+    Vec3 position{0.f};               // world position (Blender's origin, not camera-relative)
     Vec3 true_normal{0.f, 0.f, 1.f};  // geometric normal, winding side
     Vec3 object_location{0.f};        // the object's origin, world
     float object_index = 0.f;         // its pass index
@@ -181,9 +211,9 @@ struct ShaderOp {
 
 /// The images of a scene: two texel pools and, per image, [first texel, width, height, colour space, storage].
 struct TexturePools {
-    std::vector<float> floats;     // RGBA float32 texels (`textures`)
-    std::vector<uint8_t> bytes;    // RGBA 8-bit texels (`textures_u8`)
-    std::vector<uint32_t> info;    // rows of 5 (`texture_info`)
+    std::vector<float> floats;   // RGBA float32 texels (`textures`)
+    std::vector<uint8_t> bytes;  // RGBA 8-bit texels (`textures_u8`)
+    std::vector<uint32_t> info;  // rows of 5 (`texture_info`)
 };
 
 /// Every shader program of a scene with the images, ramps and constants they use. Immutable after load.
@@ -206,7 +236,9 @@ public:
     bool varying(uint32_t p, uint32_t r) const { return m_varying[m_program_start[p] + r] != 0; }
     /// True if it depends on the point itself (a register that varies only with the path, through a Light Path
     /// node, is the same at every point of a surface or in every direction of the world).
-    bool spatially_varying(uint32_t p, uint32_t r) const { return (m_varying[m_program_start[p] + r] & k_spatial) != 0; }
+    bool spatially_varying(uint32_t p, uint32_t r) const {
+        return (m_varying[m_program_start[p] + r] & k_spatial) != 0;
+    }
     /// True if it depends on the path (a Light Path node upstream).
     bool path_dependent(uint32_t p, uint32_t r) const { return (m_varying[m_program_start[p] + r] & k_path) != 0; }
     /// True if any program reads a Light Path output.
@@ -241,7 +273,7 @@ private:
     std::vector<ShaderOp> m_ops;
     std::vector<uint32_t> m_program_start;
     static constexpr uint8_t k_spatial = 1, k_path = 2;
-    std::vector<uint8_t> m_varying;        // per operation: k_spatial | k_path bits
+    std::vector<uint8_t> m_varying;  // per operation: k_spatial | k_path bits
     bool m_reads_light_path = false;
     bool m_reads_window = false;
     std::vector<uint8_t> m_differentials;  // per program

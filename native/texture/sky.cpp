@@ -8,8 +8,8 @@ namespace candela {
 
 size_t sky_state_size(SkyModel model) {
     switch (model) {
-        case SkyModel::Preetham: return 20;
-        case SkyModel::Nishita: return 9;
+    case SkyModel::Preetham: return 20;
+    case SkyModel::Nishita: return 9;
     }
     return 0;
 }
@@ -47,8 +47,8 @@ Vec3 preetham(const float* s, const Vec3& d) {
 
 Vec3 sky_radiance(SkyModel model, const float* state, const Vec3& d) {
     switch (model) {
-        case SkyModel::Preetham: return preetham(state, d);
-        case SkyModel::Nishita: break;  // tabulated: ShaderLibrary evaluates it
+    case SkyModel::Preetham: return preetham(state, d);
+    case SkyModel::Nishita: break;  // tabulated: ShaderLibrary evaluates it
     }
     return Vec3(0.f);
 }

@@ -20,9 +20,9 @@ constexpr float k_sun[k_lambdas] = {1.10f, 1.70f, 1.75f, 1.80f, 2.05f, 2.05f, 1.
                                     1.75f, 1.67f, 1.60f, 1.52f, 1.50f, 1.41f, 1.35f, 1.28f, 1.23f, 1.18f};
 // Ozone absorption at the density peak (25 km), per metre: the Chappuis band through Bruneton and Neyret's values
 // at 440, 550 and 680 nm (2008, "Precomputed atmospheric scattering").
-constexpr float k_ozone[k_lambdas] = {0.f,     0.02e-6f, 0.04e-6f, 0.085e-6f, 0.25e-6f, 0.45e-6f, 0.9e-6f,
-                                      1.3e-6f, 1.7e-6f,  1.95e-6f, 2.1e-6f,   2.2e-6f,  1.9e-6f,  1.4e-6f,
-                                      0.95e-6f, 0.65e-6f, 0.45e-6f, 0.3e-6f,  0.2e-6f,  0.12e-6f, 0.05e-6f};
+constexpr float k_ozone[k_lambdas] = {0.f,      0.02e-6f, 0.04e-6f, 0.085e-6f, 0.25e-6f, 0.45e-6f, 0.9e-6f,
+                                      1.3e-6f,  1.7e-6f,  1.95e-6f, 2.1e-6f,   2.2e-6f,  1.9e-6f,  1.4e-6f,
+                                      0.95e-6f, 0.65e-6f, 0.45e-6f, 0.3e-6f,   0.2e-6f,  0.12e-6f, 0.05e-6f};
 
 /// Rayleigh scattering of sea-level air, ∝ λ⁻⁴ through 13.558·10⁻⁶ /m at 550 nm (Bruneton and Neyret 2008).
 double rayleigh(int k) {
@@ -109,8 +109,8 @@ Vec3 NishitaSky::sky(float azimuth, float elevation) const {
     // k_steps points, sunlight attenuated on its way in and on the way to the eye, times the local scattering.
     const NishitaParams& p = m_params;
     const D3 eye{0.0, 0.0, k_earth + double(p.altitude) + 1.0};
-    const D3 view{std::sin(double(azimuth)) * std::cos(double(elevation)), std::cos(double(azimuth)) * std::cos(double(elevation)),
-                  std::sin(double(elevation))};
+    const D3 view{std::sin(double(azimuth)) * std::cos(double(elevation)),
+                  std::cos(double(azimuth)) * std::cos(double(elevation)), std::sin(double(elevation))};
     const D3 sun{0.0, std::cos(double(p.sun_elevation)), std::sin(double(p.sun_elevation))};
     double length = exit_distance(eye, view, k_atmosphere), t_ground;
     if (hits_earth(eye, view, &t_ground)) length = t_ground;
@@ -128,7 +128,8 @@ Vec3 NishitaSky::sky(float azimuth, float elevation) const {
         const double dr = std::exp(-h / k_rayleigh_height) * ds, dm = std::exp(-h / k_mie_height) * ds,
                      dz = ozone_density(h) * ds;
         // Depth from the eye to the middle of this segment.
-        const double depth_r = eye_depth[0] + 0.5 * dr, depth_m = eye_depth[1] + 0.5 * dm, depth_z = eye_depth[2] + 0.5 * dz;
+        const double depth_r = eye_depth[0] + 0.5 * dr, depth_m = eye_depth[1] + 0.5 * dm,
+                     depth_z = eye_depth[2] + 0.5 * dz;
         eye_depth[0] += dr;
         eye_depth[1] += dm;
         eye_depth[2] += dz;
@@ -137,7 +138,8 @@ Vec3 NishitaSky::sky(float azimuth, float elevation) const {
         double light[3];
         optical_depth(q, sun, light);
         for (int k = 0; k < k_lambdas; ++k) {
-            const double tau = rayleigh(k) * p.air * (depth_r + light[0]) + k_mie * 1.11 * p.dust * (depth_m + light[1]) +
+            const double tau = rayleigh(k) * p.air * (depth_r + light[0]) +
+                               k_mie * 1.11 * p.dust * (depth_m + light[1]) +
                                double(k_ozone[k]) * p.ozone * (depth_z + light[2]);
             spectrum[k] += std::exp(-tau) * (rayleigh(k) * p.air * dr * phase_r + k_mie * p.dust * dm * phase_m);
         }
@@ -178,7 +180,8 @@ Vec3 NishitaSky::radiance(const Vec3& d_in) const {
     const int i = std::min(int(u), k_azimuths - 2), j = std::min(int(v), k_elevations - 2);
     const float fu = u - float(i), fv = v - float(j);
     auto at = [&](int jj, int ii) { return m_table[size_t(jj) * k_azimuths + ii]; };
-    const Vec3 c = (at(j, i) * (1.f - fu) + at(j, i + 1) * fu) * (1.f - fv) + (at(j + 1, i) * (1.f - fu) + at(j + 1, i + 1) * fu) * fv;
+    const Vec3 c = (at(j, i) * (1.f - fu) + at(j, i + 1) * fu) * (1.f - fv) +
+                   (at(j + 1, i) * (1.f - fu) + at(j + 1, i + 1) * fu) * fv;
     return c * fade;
 }
 

@@ -19,10 +19,10 @@ namespace candela {
 
 struct NishitaParams {
     float sun_elevation = 0.2618f, sun_rotation = 0.f;  // radians
-    float altitude = 0.f;                                // metres
+    float altitude = 0.f;                               // metres
     float air = 1.f, dust = 1.f, ozone = 1.f;           // density multipliers
     bool sun_disc = true;
-    float sun_size = 0.009512f, sun_intensity = 1.f;     // angular diameter (radians)
+    float sun_size = 0.009512f, sun_intensity = 1.f;  // angular diameter (radians)
 };
 
 class NishitaSky {
@@ -40,7 +40,7 @@ private:
     Vec3 sky(float azimuth_from_sun, float elevation) const;
     NishitaParams m_params;
     Vec3 m_sun;
-    std::vector<Vec3> m_table;  // k_elevations rows of k_azimuths, Rec.709
+    std::vector<Vec3> m_table;               // k_elevations rows of k_azimuths, Rec.709
     Vec3 m_sun_bottom{0.f}, m_sun_top{0.f};  // disc radiance at its lower and upper edge
 };
 

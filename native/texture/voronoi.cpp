@@ -9,9 +9,21 @@ namespace {
 template <int N>
 struct P {
     float v[N] = {};
-    P operator+(const P& o) const { P r; for (int i = 0; i < N; ++i) r.v[i] = v[i] + o.v[i]; return r; }
-    P operator-(const P& o) const { P r; for (int i = 0; i < N; ++i) r.v[i] = v[i] - o.v[i]; return r; }
-    P operator*(float s) const { P r; for (int i = 0; i < N; ++i) r.v[i] = v[i] * s; return r; }
+    P operator+(const P& o) const {
+        P r;
+        for (int i = 0; i < N; ++i) r.v[i] = v[i] + o.v[i];
+        return r;
+    }
+    P operator-(const P& o) const {
+        P r;
+        for (int i = 0; i < N; ++i) r.v[i] = v[i] - o.v[i];
+        return r;
+    }
+    P operator*(float s) const {
+        P r;
+        for (int i = 0; i < N; ++i) r.v[i] = v[i] * s;
+        return r;
+    }
 };
 
 template <int N>
@@ -21,15 +33,25 @@ float dot(const P<N>& a, const P<N>& b) {
     return s;
 }
 template <int N>
-float euclidean(const P<N>& a, const P<N>& b) { return std::sqrt(dot(a - b, a - b)); }
+float euclidean(const P<N>& a, const P<N>& b) {
+    return std::sqrt(dot(a - b, a - b));
+}
 
 template <int N>
-P<N> mix(const P<N>& a, const P<N>& b, float t) { return a * (1.f - t) + b * t; }
+P<N> mix(const P<N>& a, const P<N>& b, float t) {
+    return a * (1.f - t) + b * t;
+}
 
 // The feature point offset (in [0, 1]ⁿ before the randomness) and the colour of a cell.
 P<1> cell_hash(const P<1>& c) { return P<1>{{hash_to_float(c.v[0])}}; }
-P<2> cell_hash(const P<2>& c) { const Vec2 h = hash_to_vec2(c.v[0], c.v[1]); return P<2>{{h.x, h.y}}; }
-P<3> cell_hash(const P<3>& c) { const Vec3 h = hash_to_color(Vec3(c.v[0], c.v[1], c.v[2])); return P<3>{{h.x, h.y, h.z}}; }
+P<2> cell_hash(const P<2>& c) {
+    const Vec2 h = hash_to_vec2(c.v[0], c.v[1]);
+    return P<2>{{h.x, h.y}};
+}
+P<3> cell_hash(const P<3>& c) {
+    const Vec3 h = hash_to_color(Vec3(c.v[0], c.v[1], c.v[2]));
+    return P<3>{{h.x, h.y, h.z}};
+}
 P<4> cell_hash(const P<4>& c) {
     const Vec4 h = hash_to_vec4(Vec4{c.v[0], c.v[1], c.v[2], c.v[3]});
     return P<4>{{h.x, h.y, h.z, h.w}};
@@ -43,22 +65,22 @@ template <int N>
 float metric_distance(const P<N>& a, const P<N>& b, const VoronoiParams& m) {
     if (N == 1) return std::fabs(a.v[0] - b.v[0]);
     switch (m.metric) {
-        case VoronoiMetric::Euclidean: return euclidean(a, b);
-        case VoronoiMetric::Manhattan: {
-            float s = 0.f;
-            for (int i = 0; i < N; ++i) s += std::fabs(a.v[i] - b.v[i]);
-            return s;
-        }
-        case VoronoiMetric::Chebychev: {
-            float s = 0.f;
-            for (int i = 0; i < N; ++i) s = std::fmax(s, std::fabs(a.v[i] - b.v[i]));
-            return s;
-        }
-        case VoronoiMetric::Minkowski: {
-            float s = 0.f;
-            for (int i = 0; i < N; ++i) s += std::pow(std::fabs(a.v[i] - b.v[i]), m.exponent);
-            return std::pow(s, 1.f / m.exponent);
-        }
+    case VoronoiMetric::Euclidean: return euclidean(a, b);
+    case VoronoiMetric::Manhattan: {
+        float s = 0.f;
+        for (int i = 0; i < N; ++i) s += std::fabs(a.v[i] - b.v[i]);
+        return s;
+    }
+    case VoronoiMetric::Chebychev: {
+        float s = 0.f;
+        for (int i = 0; i < N; ++i) s = std::fmax(s, std::fabs(a.v[i] - b.v[i]));
+        return s;
+    }
+    case VoronoiMetric::Minkowski: {
+        float s = 0.f;
+        for (int i = 0; i < N; ++i) s += std::pow(std::fabs(a.v[i] - b.v[i]), m.exponent);
+        return std::pow(s, 1.f / m.exponent);
+    }
     }
     return 0.f;
 }
@@ -137,10 +159,16 @@ Found<N> f2(const P<N>& cell, const P<N>& local, const VoronoiParams& m) {
         const P<N> point = o + cell_hash(cell + o) * m.randomness;
         const float d = metric_distance(point, local, m);
         if (d < d1) {
-            d2 = d1; o2 = o1; p2 = p1;
-            d1 = d; o1 = o; p1 = point;
+            d2 = d1;
+            o2 = o1;
+            p2 = p1;
+            d1 = d;
+            o1 = o;
+            p1 = point;
         } else if (d < d2) {
-            d2 = d; o2 = o; p2 = point;
+            d2 = d;
+            o2 = o;
+            p2 = point;
         }
     });
     return {d2, cell_color(cell + o2), p2 + cell};
@@ -217,11 +245,11 @@ VoronoiResult run(const P<N>& coord, const VoronoiParams& m) {
     VoronoiResult r;
     Found<N> f{};
     switch (m.feature) {
-        case VoronoiFeature::F1: f = f1(cell, local, m); break;
-        case VoronoiFeature::F2: f = f2(cell, local, m); break;
-        case VoronoiFeature::SmoothF1: f = smooth_f1(cell, local, m); break;
-        case VoronoiFeature::DistanceToEdge: r.distance = distance_to_edge(cell, local, m); return r;
-        case VoronoiFeature::NSphereRadius: r.radius = n_sphere_radius(cell, local, m); return r;
+    case VoronoiFeature::F1: f = f1(cell, local, m); break;
+    case VoronoiFeature::F2: f = f2(cell, local, m); break;
+    case VoronoiFeature::SmoothF1: f = smooth_f1(cell, local, m); break;
+    case VoronoiFeature::DistanceToEdge: r.distance = distance_to_edge(cell, local, m); return r;
+    case VoronoiFeature::NSphereRadius: r.radius = n_sphere_radius(cell, local, m); return r;
     }
     r.distance = f.distance;
     r.color = f.color;
@@ -238,10 +266,10 @@ VoronoiResult voronoi(int dims, const Vec4& p, const VoronoiParams& params) {
     m.randomness = clamp(m.randomness, 0.f, 1.f);
     const float s = m.scale;
     switch (dims) {
-        case 1: return run(P<1>{{p.w * s}}, m);
-        case 2: return run(P<2>{{p.x * s, p.y * s}}, m);
-        case 4: return run(P<4>{{p.x * s, p.y * s, p.z * s, p.w * s}}, m);
-        default: return run(P<3>{{p.x * s, p.y * s, p.z * s}}, m);
+    case 1: return run(P<1>{{p.w * s}}, m);
+    case 2: return run(P<2>{{p.x * s, p.y * s}}, m);
+    case 4: return run(P<4>{{p.x * s, p.y * s, p.z * s, p.w * s}}, m);
+    default: return run(P<3>{{p.x * s, p.y * s, p.z * s}}, m);
     }
 }
 

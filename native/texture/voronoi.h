@@ -27,7 +27,7 @@ struct VoronoiParams {
 struct VoronoiResult {
     float distance = 0.f;
     Vec3 color{0.f};
-    Vec4 position;     // up to 4 coordinates (unused ones 0), divided by the scale
+    Vec4 position;  // up to 4 coordinates (unused ones 0), divided by the scale
     float radius = 0.f;
 };
 

@@ -42,8 +42,10 @@ Agreement compare_seed_sets(const std::vector<RenderResult>& a, const std::vecto
     const int w = a.front().width, h = a.front().height;
     auto masked = [&](size_t i) { return !mask || (*mask)[i] != 0; };
     double va = 0.0, vb = 0.0;
-    seed_statistics(a, [&](size_t i, const RenderResult&) { return masked(i); }, &out.mean_a, &va);
-    seed_statistics(b, [&](size_t i, const RenderResult&) { return masked(i); }, &out.mean_b, &vb);
+    seed_statistics(
+        a, [&](size_t i, const RenderResult&) { return masked(i); }, &out.mean_a, &va);
+    seed_statistics(
+        b, [&](size_t i, const RenderResult&) { return masked(i); }, &out.mean_b, &vb);
     out.mean_z = (out.mean_a - out.mean_b) / std::sqrt(std::max(va + vb, 1e-300));
     for (int by = 0; by + block <= h; by += block)
         for (int bx = 0; bx + block <= w; bx += block) {
@@ -71,7 +73,8 @@ Agreement compare_seed_sets(const std::vector<RenderResult>& a, const std::vecto
 SeedMean seed_mean(const std::vector<RenderResult>& set) {
     SeedMean out;
     double var = 0.0;
-    seed_statistics(set, [](size_t, const RenderResult&) { return true; }, &out.mean, &var);
+    seed_statistics(
+        set, [](size_t, const RenderResult&) { return true; }, &out.mean, &var);
     out.standard_error = std::sqrt(var);
     return out;
 }

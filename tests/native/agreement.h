@@ -16,7 +16,7 @@ struct Agreement {
     double mean_z = 0.0;                // their difference over its standard error
     double worst_block_z = 0.0;         // the largest |z| over the blocks
     int blocks = 0;
-    std::string worst_block;            // "x,y" of the worst block
+    std::string worst_block;  // "x,y" of the worst block
 };
 
 /// `mask` (optional, W·H, bottom row first): only pixels with a non-zero entry count; blocks with none are skipped.

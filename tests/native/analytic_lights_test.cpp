@@ -32,8 +32,8 @@
 #include <vector>
 
 #include "core/math.h"
-#include "test_helpers.h"
 #include "reference_scenes.h"
+#include "test_helpers.h"
 
 namespace candela::test {
 namespace {
@@ -100,8 +100,8 @@ Case sphere_light_case(const std::string& name) {
     sphere.add_sphere(1.f, 64, 32, 0);
     const float at[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 2, 0, 0, 0, 1};
     c.builder.add_instance(c.builder.add_sphere(1.f, 64, 32, lamp), at);
-    c.exact = convex_mesh_irradiance(sphere, Vec3(0.f, 0.f, 2.f), Vec3(0.f, 0.f, 2.f), Vec3(0.f), Vec3(0.f, 0.f, 1.f)) /
-              k_pi;
+    c.exact =
+        convex_mesh_irradiance(sphere, Vec3(0.f, 0.f, 2.f), Vec3(0.f, 0.f, 2.f), Vec3(0.f), Vec3(0.f, 0.f, 1.f)) / k_pi;
     return c;
 }
 

@@ -49,7 +49,8 @@ Params pass_params(int samples = 4) {
 TEST(Aov, PlaneFacingTheCameraHasItsDepthNormalAlbedoAndIndex) {
     // A plane 4 m in front of the camera covering the whole view, lit or not (the passes do not care).
     MeshBuilder b;
-    b.add_instance(b.add_quad_z(-100.f, 100.f, -100.f, 100.f, -4.f, b.add_material(Color(0.25f, 0.5f, 0.75f), Color(0.f))));
+    b.add_instance(
+        b.add_quad_z(-100.f, 100.f, -100.f, 100.f, -4.f, b.add_material(Color(0.25f, 0.5f, 0.75f), Color(0.f))));
     SceneArrays a = b.arrays();
     const uint32_t pass_index = 7;
     a.set("instance_pass_index", ElemType::U32, {1}, &pass_index);
@@ -60,7 +61,7 @@ TEST(Aov, PlaneFacingTheCameraHasItsDepthNormalAlbedoAndIndex) {
         EXPECT_NEAR(p.normal[3 * i], 0.f, 1e-6f);
         EXPECT_NEAR(p.normal[3 * i + 1], 0.f, 1e-6f);
         EXPECT_NEAR(p.normal[3 * i + 2], 1.f, 1e-6f);  // facing the camera, whatever the winding
-        EXPECT_NEAR(p.albedo[3 * i], 0.25f, 1e-6f);     // Lambert: its albedo is its colour
+        EXPECT_NEAR(p.albedo[3 * i], 0.25f, 1e-6f);    // Lambert: its albedo is its colour
         EXPECT_NEAR(p.albedo[3 * i + 1], 0.5f, 1e-6f);
         EXPECT_NEAR(p.albedo[3 * i + 2], 0.75f, 1e-6f);
         EXPECT_EQ(p.index[i], 7.f);
@@ -87,7 +88,8 @@ SceneArrays two_tone_quad(const char* closure, const char* column, Color left, C
     ProgramBuilder b;
     const uint32_t tex = b.image(2, 1, {left, right});
     const uint32_t co = b.op(ShaderOpCode::Coord, 0, 0, 0, {uint32_t(CoordKind::Uv)});
-    const uint32_t reg = b.op(ShaderOpCode::Image, co, 0, 0, {tex, uint32_t(TexInterpolation::Closest), uint32_t(TexExtension::Extend), 0});
+    const uint32_t reg = b.op(ShaderOpCode::Image, co, 0, 0,
+                              {tex, uint32_t(TexInterpolation::Closest), uint32_t(TexExtension::Extend), 0});
     const uint32_t p = b.end_program();
     b.bind(InputTarget::Closure, 0, closure_column(column), 3, p, reg);
     b.add_to(a);
@@ -110,8 +112,8 @@ float half_mean(const std::vector<float>& pass, int c, bool left) {
 TEST(Aov, AlbedoShowsTheTexturedDiffuseColour) {
     // Cycles' albedo of a Diffuse BSDF is its colour, here a texture: each half of the quad shows its texel
     // exactly (no noise: every sample of a pixel lands on one texel), not the closure's 0.5 placeholder.
-    const Passes p = render_passes(two_tone_quad("DIFFUSE", "color_r", Color(0.1f, 0.2f, 0.3f), Color(0.9f, 0.6f, 0.4f)),
-                                   pass_params());
+    const Passes p = render_passes(
+        two_tone_quad("DIFFUSE", "color_r", Color(0.1f, 0.2f, 0.3f), Color(0.9f, 0.6f, 0.4f)), pass_params());
     EXPECT_NEAR(half_mean(p.albedo, 0, true), 0.1f, 1e-6f);
     EXPECT_NEAR(half_mean(p.albedo, 1, true), 0.2f, 1e-6f);
     EXPECT_NEAR(half_mean(p.albedo, 2, true), 0.3f, 1e-6f);
@@ -123,9 +125,10 @@ TEST(Aov, AlbedoShowsTheTexturedDiffuseColour) {
 TEST(Aov, AlbedoShowsTheTexturedPrincipledBaseColour) {
     // Principled, metallic 0, specular 0, no sheen/clearcoat/transmission: one diffuse closure of weight base
     // colour, so Cycles' albedo is the textured base colour.
-    const Passes p = render_passes(two_tone_quad("PRINCIPLED", "color_r", Color(0.25f, 0.5f, 0.75f), Color(0.8f, 0.1f, 0.2f),
-                                                 {{"specular", 0.f}, {"roughness", 0.5f}, {"ior", 1.45f}}),
-                                   pass_params());
+    const Passes p =
+        render_passes(two_tone_quad("PRINCIPLED", "color_r", Color(0.25f, 0.5f, 0.75f), Color(0.8f, 0.1f, 0.2f),
+                                    {{"specular", 0.f}, {"roughness", 0.5f}, {"ior", 1.45f}}),
+                      pass_params());
     EXPECT_NEAR(half_mean(p.albedo, 0, true), 0.25f, 1e-6f);
     EXPECT_NEAR(half_mean(p.albedo, 2, true), 0.75f, 1e-6f);
     EXPECT_NEAR(half_mean(p.albedo, 0, false), 0.8f, 1e-6f);
@@ -138,10 +141,20 @@ TEST(Aov, AlbedoLeavesOutTransparentClosures) {
     MeshBuilder m;
     const uint32_t mat = m.add_material(Color(0.9f), Color(0.f));
     m.add_instance(m.add_quad_z(-1, 1, -1, 1, -2, mat));
-    m.add_closure(mat, "DIFFUSE", {{"weight_r", 0.3f}, {"weight_g", 0.3f}, {"weight_b", 0.3f},
-                                   {"color_r", 0.6f}, {"color_g", 0.6f}, {"color_b", 0.6f}});
-    m.add_closure(mat, "TRANSPARENT", {{"weight_r", 0.7f}, {"weight_g", 0.7f}, {"weight_b", 0.7f},
-                                       {"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}});
+    m.add_closure(mat, "DIFFUSE",
+                  {{"weight_r", 0.3f},
+                   {"weight_g", 0.3f},
+                   {"weight_b", 0.3f},
+                   {"color_r", 0.6f},
+                   {"color_g", 0.6f},
+                   {"color_b", 0.6f}});
+    m.add_closure(mat, "TRANSPARENT",
+                  {{"weight_r", 0.7f},
+                   {"weight_g", 0.7f},
+                   {"weight_b", 0.7f},
+                   {"color_r", 1.f},
+                   {"color_g", 1.f},
+                   {"color_b", 1.f}});
     const Passes p = render_passes(m.arrays(), pass_params());
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(half_mean(p.albedo, c, true), 0.18f, 1e-6f);
 }
@@ -228,7 +241,8 @@ TEST(Aov, PassesAreOnlyWrittenWhenAskedFor) {
 TEST(Aov, PassesDoNotDependOnTheThreadCount) {
     MeshBuilder b;
     const uint32_t m = b.add_material(Color(0.5f), Color(0.f));
-    b.add_instance(b.add_sphere(1.f, 24, 12, m), std::array<float, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -4, 0, 0, 0, 1}.data());
+    b.add_instance(b.add_sphere(1.f, 24, 12, m),
+                   std::array<float, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -4, 0, 0, 0, 1}.data());
     Params p1 = pass_params(8), p2 = pass_params(8);
     p1.set("threads", int64_t(1));
     p2.set("threads", int64_t(2));

@@ -55,17 +55,18 @@ TEST(AutoPolicy, ChoiceAndReasonOnTheReferenceScenes) {
     std::vector<Case> cases;
     cases.push_back({"cornell_box", cornell_box(), basic_params(8, 8, 1, 2), "PATH", "default"});
     cases.push_back({"glass_caustic", glass_caustic(), basic_params(8, 8, 1, 2), "BDPT", "caustics_bdpt"});
-    cases.push_back({"lit_room point+disk, specular", lit_room(1 | 32, true), basic_params(8, 8, 1, 2), "BDPT",
-                     "caustics_bdpt"});
+    cases.push_back(
+        {"lit_room point+disk, specular", lit_room(1 | 32, true), basic_params(8, 8, 1, 2), "BDPT", "caustics_bdpt"});
     // Its 0.5 × 0.4 rectangle is 0.2 m², under 1 % of the room's πR²: small.
     cases.push_back({"lit_room rectangle+world, specular", lit_room(64 | 256, true), basic_params(8, 8, 1, 2), "BDPT",
                      "caustics_bdpt"});
     MeshBuilder large = floor_and_mirror(true);
     large.add_area_light(Vec3(0.f, 2.f, -4.f), Vec3(3.f, 0.f, 0.f), Vec3(0.f, 0.f, 3.f), Vec3(0.f, -1.f, 0.f),
                          Color(100.f), false);
-    cases.push_back({"mirror under a 9 m² light", large.arrays(), basic_params(8, 8, 1, 2), "PATH",
-                     "specular_large_lights"});
-    cases.push_back({"lit_room all lights, diffuse", lit_room(511, false), basic_params(8, 8, 1, 2), "PATH", "default"});
+    cases.push_back(
+        {"mirror under a 9 m² light", large.arrays(), basic_params(8, 8, 1, 2), "PATH", "specular_large_lights"});
+    cases.push_back(
+        {"lit_room all lights, diffuse", lit_room(511, false), basic_params(8, 8, 1, 2), "PATH", "default"});
     cases.push_back({"smooth_lowpoly_sphere", smooth_lowpoly_sphere(), basic_params(8, 8, 1, 2), "PATH", "default"});
     cases.push_back({"veach_scene", std::move(veach), veach_params(8, 8), "PATH", "default"});
     cases.push_back({"facing_plates", facing_plates(), facing_plates_params(8, 8, 1), "PATH", "default"});

@@ -43,7 +43,8 @@ SceneArrays mis_scene() {
     b.add_instance(b.add_triangle(Vec3(-0.3f, 1.45f, -1.5f), Vec3(0.3f, 1.45f, -1.5f), Vec3(0.f, 1.45f, -2.1f), lamp));
     b.add_point_light(Vec3(1.f, 0.8f, -1.f), Color(5.f));
     b.add_point_light(Vec3(-1.f, 0.8f, -1.f), Color(5.f), 0.1f);
-    b.add_area_light(Vec3(0.8f, 1.45f, -2.5f), Vec3(0.6f, 0.f, 0.f), Vec3(0.f, 0.f, 0.4f), Vec3(0.f, -1.f, 0.f), Color(8.f), false);
+    b.add_area_light(Vec3(0.8f, 1.45f, -2.5f), Vec3(0.6f, 0.f, 0.f), Vec3(0.f, 0.f, 0.4f), Vec3(0.f, -1.f, 0.f),
+                     Color(8.f), false);
     for (float angle : {0.f, 0.2f}) {
         std::vector<float> sun(light_columns().size(), 0.f);
         for (int c = 0; c < 3; ++c) sun[c] = 2.f;
@@ -79,20 +80,24 @@ void split(const FullPath& path, int s, std::vector<PathVertex>& y, std::vector<
         out.delta = in.delta;
         out.hit = in.hit;
         out.w = in.infinite ? in.w : w;
-        if (in.kind == VertexKind::Surface) out.bsdf.emplace(path.c.scene, out.hit, out.w, path.c.scene.shade(out.hit, out.w));
+        if (in.kind == VertexKind::Surface)
+            out.bsdf.emplace(path.c.scene, out.hit, out.w, path.c.scene.shade(out.hit, out.w));
     };
     auto dir = [&](int from, int to) { return normalize(path.x[size_t(to)]->p - path.x[size_t(from)]->p); };
     for (int i = 0; i < s; ++i) copy(y[size_t(i)], *path.x[size_t(i)], i > 0 ? dir(i, i - 1) : Vec3(0.f));
-    for (int j = 0; j < t; ++j) copy(z[size_t(j)], *path.x[size_t(n - 1 - j)], j > 0 ? dir(n - 1 - j, n - j) : Vec3(0.f));
+    for (int j = 0; j < t; ++j)
+        copy(z[size_t(j)], *path.x[size_t(n - 1 - j)], j > 0 ? dir(n - 1 - j, n - j) : Vec3(0.f));
     // Light side: forward densities from the light; reverse from the camera side.
     for (int i = 0; i < s; ++i) {
-        y[size_t(i)].pdf_fwd = i == 0 ? d.origin(y[0], *path.x[1])
-                                      : d.light_side(*path.x[size_t(i - 1)], i > 1 ? path.x[size_t(i - 2)] : nullptr, *path.x[size_t(i)]);
+        y[size_t(i)].pdf_fwd =
+            i == 0 ? d.origin(y[0], *path.x[1])
+                   : d.light_side(*path.x[size_t(i - 1)], i > 1 ? path.x[size_t(i - 2)] : nullptr, *path.x[size_t(i)]);
     }
     for (int j = 0; j < t; ++j) {
         const int i = n - 1 - j;
         z[size_t(j)].pdf_fwd = j == 0 ? path.x.back()->pdf_fwd
-                                      : d.camera_side(*path.x[size_t(i + 1)], i + 2 < n ? path.x[size_t(i + 2)] : nullptr, *path.x[size_t(i)]);
+                                      : d.camera_side(*path.x[size_t(i + 1)],
+                                                      i + 2 < n ? path.x[size_t(i + 2)] : nullptr, *path.x[size_t(i)]);
     }
     // Reverse densities of interior vertices (the connection's four are recomputed by the weight itself).
     for (int i = 0; i + 2 < s; ++i)
@@ -124,7 +129,8 @@ TEST(BdptMis, TheWeightsOfAllStrategiesOfAPathSumToOne) {
             int checked = 0;
             Sampler sampler = make_sampler("RANDOM", 5, 1);
             for (int k = 0; k < 3000; ++k) {
-                std::visit([&](auto& s) { s.start_pixel_sample(uint32_t(k % 16), uint32_t(k / 16 % 12), uint32_t(k)); }, sampler);
+                std::visit([&](auto& s) { s.start_pixel_sample(uint32_t(k % 16), uint32_t(k / 16 % 12), uint32_t(k)); },
+                           sampler);
                 const Ray ray = scene.camera().generate_ray({float(k % 16) + 0.5f, float(k / 16 % 12) + 0.5f},
                                                             get_2d(sampler, Dim::Lens));
                 PathStats stats;
@@ -134,7 +140,8 @@ TEST(BdptMis, TheWeightsOfAllStrategiesOfAPathSumToOne) {
                 // Every full path (s light, t camera vertices) joined at non-delta vertices.
                 for (int s = 1; s <= ny; ++s)
                     for (int t = 2; t <= nz; ++t) {
-                        if (y[size_t(s - 1)].delta || z[size_t(t - 1)].delta || z[size_t(t - 1)].kind != VertexKind::Surface)
+                        if (y[size_t(s - 1)].delta || z[size_t(t - 1)].delta ||
+                            z[size_t(t - 1)].kind != VertexKind::Surface)
                             continue;
                         if (s >= 2 && y[size_t(s - 1)].kind != VertexKind::Surface) continue;
                         if (s + t - 2 > settings.max_bounces + 1) continue;
@@ -155,7 +162,8 @@ TEST(BdptMis, TheWeightsOfAllStrategiesOfAPathSumToOne) {
                             split(path, s2, ys, zs);
                             sum += strategy_weight(c, ys, s2, zs, t2, nullptr, nullptr);
                         }
-                        ASSERT_NEAR(sum, 1.0, 1e-3) << camera << " path of " << n << " vertices (" << s << ", " << t << ")";
+                        ASSERT_NEAR(sum, 1.0, 1e-3)
+                            << camera << " path of " << n << " vertices (" << s << ", " << t << ")";
                         ++checked;
                     }
             }

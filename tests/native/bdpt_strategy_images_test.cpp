@@ -104,8 +104,8 @@ TEST(BdptStrategyImages, EachUnweightedStrategyEstimatesAllLightOfItsDepth) {
     for (int s = 0; s <= 2; ++s) {
         double m, se;
         stats(single[s], &m, &se);
-        std::printf("depth 1, (s, t) = (%d, %d): unweighted mean %.5f ± %.5f; all strategies weighted %.5f ± %.5f\n",
-                    s, 3 - s, m, se, m_total, se_total);
+        std::printf("depth 1, (s, t) = (%d, %d): unweighted mean %.5f ± %.5f; all strategies weighted %.5f ± %.5f\n", s,
+                    3 - s, m, se, m_total, se_total);
         EXPECT_NEAR(m, m_total, 4.0 * std::sqrt(se * se + se_total * se_total)) << "strategy s = " << s;
     }
 }

@@ -20,7 +20,6 @@ namespace {
 
 constexpr int k_seeds = 12;
 
-
 Params base_params(int w, int h) {
     Params p = basic_params(w, h, 0, 5);
     p.set("threads", int64_t(2));
@@ -43,8 +42,12 @@ void expect_agree(const SceneArrays& arrays, const Params& base, const std::stri
     EXPECT_LT(std::fabs(g.worst_block_z), 6.0) << what << ": block " << g.worst_block << " of " << g.blocks;
 }
 
-TEST(Bdpt, EqualsPathTracingWithPointSpotAndSoftPointLights) { expect_agree(lit_room(1 | 2 | 4, false), base_params(24, 18), "points"); }
-TEST(Bdpt, EqualsPathTracingWithSuns) { expect_agree(lit_room(8 | 16 | 256, false), base_params(24, 18), "suns and world"); }
+TEST(Bdpt, EqualsPathTracingWithPointSpotAndSoftPointLights) {
+    expect_agree(lit_room(1 | 2 | 4, false), base_params(24, 18), "points");
+}
+TEST(Bdpt, EqualsPathTracingWithSuns) {
+    expect_agree(lit_room(8 | 16 | 256, false), base_params(24, 18), "suns and world");
+}
 TEST(Bdpt, EqualsPathTracingWithAreaLightsAndEmissiveTriangles) {
     // Hittable lights: PATH finds the caustics through the glass and the mirror too.
     expect_agree(lit_room(32 | 64 | 128 | 256, true), base_params(24, 18), "area lights, a triangle, glass, a mirror");

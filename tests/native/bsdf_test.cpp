@@ -53,13 +53,13 @@ PrincipledParams principled(float roughness) {
 // Expected white-furnace behaviour of a case (E = mean of f·|cos θi|/pdf over importance samples, in
 // Importance mode where a transmission's weight is the energy-conserving one).
 enum class Furnace {
-    None,      // not a white, energy-conserving closure (Principled combinations: v1 adds lobes)
-    Exact,     // every sample weight is 1 (Lambert, Translucent, Transparent, smooth glass)
-    Near,      // E ≈ 1 for θo ≤ 50°: rough glass at α = 0.05 (R+T). Single scattering loses the energy
-               // of rays masked by a second microfacet; at α = 0.05 and θo ≤ 50° that is < 1% (the lone
-               // GGX reflection lobe at α = 0.05 measures it: 0.3–0.5%). At θo = 80° the loss reaches
-               // 2.5–5% (GGX's long tail; separable Smith G) and only E ≤ 1 + 3σ is asserted.
-    AtMost,    // E ≤ 1 + 3σ; microfacet lobes lose single-scatter energy at high roughness
+    None,    // not a white, energy-conserving closure (Principled combinations: v1 adds lobes)
+    Exact,   // every sample weight is 1 (Lambert, Translucent, Transparent, smooth glass)
+    Near,    // E ≈ 1 for θo ≤ 50°: rough glass at α = 0.05 (R+T). Single scattering loses the energy
+             // of rays masked by a second microfacet; at α = 0.05 and θo ≤ 50° that is < 1% (the lone
+             // GGX reflection lobe at α = 0.05 measures it: 0.3–0.5%). At θo = 80° the loss reaches
+             // 2.5–5% (GGX's long tail; separable Smith G) and only E ≤ 1 + 3σ is asserted.
+    AtMost,  // E ≤ 1 + 3σ; microfacet lobes lose single-scatter energy at high roughness
 };
 
 struct Case {
@@ -158,13 +158,21 @@ TEST(BsdfChi2Harness, IncompleteGammaKnownValues) {
 TEST(BsdfChi2Harness, AcceptsCorrectAndRejectsWrongDensities) {
     Chi2Config cfg;
     cfg.samples = 200000;
-    auto uniform = [](Vec2 u, float, Vec3* w) { *w = sample_uniform_sphere(u); return true; };
-    const Chi2Result ok = chi2_test(uniform, [](const Vec3&) { return double(k_inv_four_pi); }, cfg);
+    auto uniform = [](Vec2 u, float, Vec3* w) {
+        *w = sample_uniform_sphere(u);
+        return true;
+    };
+    const Chi2Result ok = chi2_test(
+        uniform, [](const Vec3&) { return double(k_inv_four_pi); }, cfg);
     EXPECT_GT(ok.p_value, 0.01) << ok.summary();
     EXPECT_NEAR(ok.pdf_integral, 1.0, 1e-6);
     // Cosine samples against a uniform-hemisphere pdf: grossly wrong.
-    auto cosine = [](Vec2 u, float, Vec3* w) { *w = sample_cosine_hemisphere(u); return true; };
-    const Chi2Result bad = chi2_test(cosine, [](const Vec3& w) { return w.z > 0.f ? 0.5 * k_inv_pi : 0.0; }, cfg);
+    auto cosine = [](Vec2 u, float, Vec3* w) {
+        *w = sample_cosine_hemisphere(u);
+        return true;
+    };
+    const Chi2Result bad = chi2_test(
+        cosine, [](const Vec3& w) { return w.z > 0.f ? 0.5 * k_inv_pi : 0.0; }, cfg);
     EXPECT_LT(bad.p_value, 1e-10) << bad.summary();
     // Power: a GGX lobe sampled with α = 0.3 against the pdf of α = 0.315 (5% off) must be rejected.
     const Bsdf good = glossy(MD::GGX, 0.3f, 0.3f), off = glossy(MD::GGX, 0.315f, 0.315f);
@@ -271,8 +279,7 @@ TEST_P(BsdfCase, SampleAgreesWithEvalAndPdf) {
                 }
                 const Color f = k.bsdf.f(wo, s.wi, mode);
                 const float pdf = k.bsdf.pdf(wo, s.wi, mode);
-                for (int ch = 0; ch < 3; ++ch)
-                    ASSERT_NEAR(s.f[ch], f[ch], 1e-3f * std::fabs(f[ch]) + 1e-12f) << k.name;
+                for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(s.f[ch], f[ch], 1e-3f * std::fabs(f[ch]) + 1e-12f) << k.name;
                 ASSERT_NEAR(s.pdf, pdf, 1e-3f * pdf) << k.name;
             }
             EXPECT_GT(valid, 1000) << k.name;
@@ -309,14 +316,14 @@ TEST_P(BsdfFurnaceCase, WhiteFurnace) {
         }
         const double mean = sum / n, sigma = std::sqrt(std::max(sum2 / n - mean * mean, 0.0) / n);
         switch (k.furnace) {
-            case Furnace::Exact: EXPECT_NEAR(mean, 1.0, 1e-4) << k.name << " wo #" << i; break;
-            case Furnace::Near:
-                if (std::acos(wo.z) <= 50.f * k_pi / 180.f + 1e-4f)
-                    EXPECT_NEAR(mean, 1.0, 4.0 * sigma + 0.01) << k.name << " wo #" << i << " σ " << sigma;
-                EXPECT_LE(mean, 1.0 + 3.0 * sigma + 1e-6) << k.name << " wo #" << i;
-                break;
-            case Furnace::AtMost: EXPECT_LE(mean, 1.0 + 3.0 * sigma + 1e-6) << k.name << " wo #" << i; break;
-            case Furnace::None: FAIL() << "not a furnace case";
+        case Furnace::Exact: EXPECT_NEAR(mean, 1.0, 1e-4) << k.name << " wo #" << i; break;
+        case Furnace::Near:
+            if (std::acos(wo.z) <= 50.f * k_pi / 180.f + 1e-4f)
+                EXPECT_NEAR(mean, 1.0, 4.0 * sigma + 0.01) << k.name << " wo #" << i << " σ " << sigma;
+            EXPECT_LE(mean, 1.0 + 3.0 * sigma + 1e-6) << k.name << " wo #" << i;
+            break;
+        case Furnace::AtMost: EXPECT_LE(mean, 1.0 + 3.0 * sigma + 1e-6) << k.name << " wo #" << i; break;
+        case Furnace::None: FAIL() << "not a furnace case";
         }
         RecordProperty(k.name + "_furnace_" + std::to_string(i), std::to_string(mean));
         std::printf("  furnace %-32s wo#%zu  E = %.5f ± %.5f\n", k.name.c_str(), i, mean, sigma);
@@ -433,14 +440,15 @@ TEST(BsdfDielectric, ImportanceAndRadianceDifferByEtaSquared) {
 TEST(BsdfDielectric, TransmissionSatisfiesGeneralisedReciprocity) {
     Rng rng(23);
     const float eta = 1.5f;
-    const MicrofacetDielectric out{Microfacet{MD::GGX, 0.3f, 0.3f}, eta}, in{Microfacet{MD::GGX, 0.3f, 0.3f}, 1.f / eta};
+    const MicrofacetDielectric out{Microfacet{MD::GGX, 0.3f, 0.3f}, eta},
+        in{Microfacet{MD::GGX, 0.3f, 0.3f}, 1.f / eta};
     int checked = 0;
     for (int n = 0; n < 20000; ++n) {
         const Vec3 wo = sample_cosine_hemisphere(rng.u2());
         Vec3 wi = sample_cosine_hemisphere(rng.u2());
         wi.z = -wi.z;
-        const float f1 = out.f(wo, wi).x;           // wo outside (η 1), wi inside (η 1.5)
-        const float f2 = in.f(-wi, -wo).x;          // the reversed path, seen from inside
+        const float f1 = out.f(wo, wi).x;   // wo outside (η 1), wi inside (η 1.5)
+        const float f2 = in.f(-wi, -wo).x;  // the reversed path, seen from inside
         // Far tails (h near the horizon) are ill-conditioned in float32: D's relative error grows like the
         // error of h.z, and how it rounds depends on the instruction set the compiler targets (observed:
         // 1.6e-3 relative at f = 2.3e-3 with -march=native). Only values that carry energy (f ≥ 1e-2, the
@@ -536,8 +544,11 @@ TEST(BsdfPrincipled, ClosureListMatchesCycles) {
 
 // Robustness: u at the edges of [0, 1), grazing and degenerate wo never yield NaN or pdf-0 samples.
 TEST(BsdfRobustness, EdgeSamplesAndGrazingAngles) {
-    const std::vector<Vec2> us = {{0.f, 0.f}, {k_one_minus_epsilon, k_one_minus_epsilon}, {0.f, k_one_minus_epsilon},
-                                  {k_one_minus_epsilon, 0.f}, {0.5f, 0.5f}};
+    const std::vector<Vec2> us = {{0.f, 0.f},
+                                  {k_one_minus_epsilon, k_one_minus_epsilon},
+                                  {0.f, k_one_minus_epsilon},
+                                  {k_one_minus_epsilon, 0.f},
+                                  {0.5f, 0.5f}};
     const std::vector<float> ucs = {0.f, 0.5f, k_one_minus_epsilon};
     const std::vector<Vec3> wos = {Vec3(0.f, 0.f, 1.f), spherical(89.99f, 0.3f), normalize(Vec3(1.f, 0.f, 1e-6f)),
                                    Vec3(1.f, 0.f, 0.f), normalize(Vec3(0.f, 1.f, 1e-4f))};

@@ -72,8 +72,9 @@ double expected_hit_probability(const Camera& cam, const Disk& k, Pcg32& rng, do
 }
 
 TEST(CameraImportance, HitProbabilityOfSmallDisksIsTheImportance) {
-    const std::vector<std::string> models = {"perspective",           "wide_shifted_aspect", "thin_lens",
-                                             "thin_lens_blades_ratio", "ortho_dof",           "ortho_dof_blades_ratio"};
+    const std::vector<std::string> models = {"perspective", "wide_shifted_aspect",
+                                             "thin_lens",   "thin_lens_blades_ratio",
+                                             "ortho_dof",   "ortho_dof_blades_ratio"};
     for (const CameraCase& c : connectable_cases()) {
         if (std::find(models.begin(), models.end(), c.name) == models.end()) continue;
         const Camera cam(c.params, c.to_world);
@@ -104,8 +105,8 @@ TEST(CameraImportance, HitProbabilityOfSmallDisksIsTheImportance) {
             const double expected = p * n_rays;
             const double sigma = std::sqrt(std::max(expected * (1.0 - p), 1.0) + var_q * double(n_rays) * n_rays);
             const double z = (double(hits[k]) - expected) / sigma;
-            EXPECT_LE(std::fabs(z), k_z_max) << c.name << " disk " << k << ": " << hits[k] << " hits, expected "
-                                             << expected << " ± " << sigma;
+            EXPECT_LE(std::fabs(z), k_z_max)
+                << c.name << " disk " << k << ": " << hits[k] << " hits, expected " << expected << " ± " << sigma;
             seen += expected > 300.0;
             if (std::getenv("CANDELA_TEST_VERBOSE"))
                 std::printf("%s disk %zu: hits %lld expected %.1f sigma %.1f z %.2f\n", c.name.c_str(), k,
@@ -158,7 +159,8 @@ TEST(CameraImportance, ImportanceIntegratesToOneOverASurfaceCoveringTheFrame) {
             constexpr int n_points = 400000;
             double sum = 0.0, sum2 = 0.0;
             for (int i = 0; i < n_points; ++i) {
-                const Vec3 x = centre + e1 * (lo1 + (hi1 - lo1) * rng.next_float()) + e2 * (lo2 + (hi2 - lo2) * rng.next_float());
+                const Vec3 x =
+                    centre + e1 * (lo1 + (hi1 - lo1) * rng.next_float()) + e2 * (lo2 + (hi2 - lo2) * rng.next_float());
                 CameraConnection con;
                 if (!cam.connect(x, rand2(rng), &con)) continue;
                 const double v = area * con.importance * std::fabs(dot(n, con.wi));
@@ -166,7 +168,8 @@ TEST(CameraImportance, ImportanceIntegratesToOneOverASurfaceCoveringTheFrame) {
                 sum2 += v * v;
             }
             const double mean = sum / n_points, sigma = std::sqrt((sum2 / n_points - mean * mean) / n_points);
-            EXPECT_LE(std::fabs(mean - 1.0), k_z_max * sigma) << c.name << " tilt " << tilt << ": " << mean << " ± " << sigma;
+            EXPECT_LE(std::fabs(mean - 1.0), k_z_max * sigma)
+                << c.name << " tilt " << tilt << ": " << mean << " ± " << sigma;
             EXPECT_LT(sigma, 0.01) << c.name;  // resolves a 5 % error
         }
     }
@@ -226,8 +229,8 @@ double direction_chi2_p(const Camera& cam, Vec2 lo, Vec2 hi, const std::function
         stat += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
         ++dof;
     }
-    *report = "chi2 " + std::to_string(stat) + " dof " + std::to_string(dof) + ", pdf integral " + std::to_string(total) +
-              ", outside the box " + std::to_string(outside);
+    *report = "chi2 " + std::to_string(stat) + " dof " + std::to_string(dof) + ", pdf integral " +
+              std::to_string(total) + ", outside the box " + std::to_string(outside);
     return impossible ? 0.0 : chi2_survival(stat, dof);
 }
 
@@ -256,7 +259,9 @@ TEST(CameraImportance, PdfDirIsTheDensityOfGeneratedDirections) {
                 r.d = normalize(Vec3(t.x, t.y, -1.f));
                 return r;
             },
-            [&](Pcg32& rng) { return cam.generate_ray({rng.next_float() * w, rng.next_float() * h}, pc.u_lens).d; },
+            [&](Pcg32& rng) {
+                return cam.generate_ray({rng.next_float() * w, rng.next_float() * h}, pc.u_lens).d;
+            },
             &report);
         EXPECT_GE(p, alpha) << pc.name << ": " << report;
     }

@@ -187,7 +187,8 @@ TEST(CameraImportance, ApertureContainsExactlyWhatItSamples) {
         const float bx = ap.radius * ap.inv_ratio, by = ap.radius;
         constexpr int n = 400000;
         int inside = 0;
-        for (int i = 0; i < n; ++i) inside += ap.contains({(2.f * rng.next_float() - 1.f) * bx, (2.f * rng.next_float() - 1.f) * by});
+        for (int i = 0; i < n; ++i)
+            inside += ap.contains({(2.f * rng.next_float() - 1.f) * bx, (2.f * rng.next_float() - 1.f) * by});
         const double p = ap.area() / (4.0 * bx * by);
         EXPECT_LE(std::fabs(inside - n * p), k_z_max * std::sqrt(n * p * (1.0 - p))) << blades;
     }

@@ -145,8 +145,8 @@ TEST(Camera, EquirectangularHonoursTheLatitudeAndLongitudeRange) {
     p.set("latitude_min", -0.25 * 3.14159265358979);
     p.set("latitude_max", 0.25 * 3.14159265358979);
     const Camera cam(p, Affine());
-    EXPECT_LT(angle_between(cam.generate_ray({40.f, 10.f}).d, Vec3(1.f, 0.f, 0.f)), 1e-5f);   // right edge: +90°
-    EXPECT_NEAR(std::asin(cam.generate_ray({20.f, 20.f}).d.y), 0.25f * k_pi, 1e-5f);           // top: +45°
+    EXPECT_LT(angle_between(cam.generate_ray({40.f, 10.f}).d, Vec3(1.f, 0.f, 0.f)), 1e-5f);  // right edge: +90°
+    EXPECT_NEAR(std::asin(cam.generate_ray({20.f, 20.f}).d.y), 0.25f * k_pi, 1e-5f);         // top: +45°
 }
 
 TEST(Camera, FisheyeEquidistantAngleGrowsLinearlyWithRadius) {
@@ -196,7 +196,7 @@ TEST(Camera, PanoramaFollowsTheCameraTransform) {
 
 TEST(Camera, PanoramaViewBoxMapsTheFrameToPartOfThePanorama) {
     Params p = pano_params(64, 32, "EQUIRECTANGULAR");
-    p.set("pano_left", 0.5);   // the viewport shows the right half of the panorama
+    p.set("pano_left", 0.5);  // the viewport shows the right half of the panorama
     p.set("pano_right", 1.0);
     const Camera cam(p, Affine());
     EXPECT_LT(angle_between(cam.generate_ray({0.f, 16.f}).d, Vec3(0.f, 0.f, -1.f)), 1e-5f);

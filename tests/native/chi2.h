@@ -22,8 +22,8 @@ using DirectionSampler = std::function<bool(Vec2 u, float uc, Vec3* w)>;
 using DirectionPdf = std::function<double(const Vec3& w)>;
 
 struct Chi2Config {
-    int cos_bins = 20;          // cells in cos θ ∈ [−1, 1]
-    int phi_bins = 40;          // cells in φ ∈ [0, 2π)
+    int cos_bins = 20;  // cells in cos θ ∈ [−1, 1]
+    int phi_bins = 40;  // cells in φ ∈ [0, 2π)
     uint64_t samples = 1000000;
     double min_expected = 5.0;  // cells expected below this are pooled
     uint64_t seed = 1;
@@ -38,8 +38,8 @@ struct Chi2Result {
     int dof = 0;
     double p_value = 0.0;
     uint64_t valid_samples = 0;
-    double pdf_integral = 0.0;  // ∫ pdf over the sphere (quadrature)
-    bool rejected_empty_cell = false;  // samples landed where the pdf integrates to 0
+    double pdf_integral = 0.0;               // ∫ pdf over the sphere (quadrature)
+    bool rejected_empty_cell = false;        // samples landed where the pdf integrates to 0
     std::vector<double> observed, expected;  // per cell (cos-major), for dumps
     std::string summary() const;
 };

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/params.h"
 #include "core/error.h"
+#include "core/params.h"
 #include "scene/coplanar_overlap.h"
 #include "scene/scene.h"
 #include "test_helpers.h"
@@ -102,8 +102,8 @@ TEST(CoplanarOverlap, FacesInAPlaneAlongTheSignDirectionStillMeet) {
 TEST(CoplanarOverlap, CoplanarButDisjointOrTouchingQuadsAreNotFlagged) {
     Soup s;
     s.quad_object(Vec3(0.f, 0.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));
-    s.quad_object(Vec3(1.5f, 0.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));   // 0.5 beside it
-    s.quad_object(Vec3(0.f, 1.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));    // sharing its top edge
+    s.quad_object(Vec3(1.5f, 0.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));  // 0.5 beside it
+    s.quad_object(Vec3(0.f, 1.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));   // sharing its top edge
     // Diagonal neighbours: the boxes of the two triangles nearest to each other overlap, the triangles do not.
     s.begin_object();
     s.triangle(Vec3(1.f, 0.9f, 1.f), Vec3(1.1f, 0.f, 1.f), Vec3(1.1f, 0.9f, 1.f));
@@ -133,8 +133,8 @@ TEST(CoplanarOverlap, ParallelPlanesApartAreNotFlaggedButTiesAre) {
 TEST(CoplanarOverlap, TwoTrianglesOfOneMeshAreNeverRivals) {
     Soup s;
     s.begin_object();
-    s.quad(Vec3(0.f, 0.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));      // adjacent triangles
-    s.quad(Vec3(0.2f, 0.2f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));    // even overlapping ones, in one object
+    s.quad(Vec3(0.f, 0.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));    // adjacent triangles
+    s.quad(Vec3(0.2f, 0.2f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));  // even overlapping ones, in one object
     s.end_object();
     s.quad_object(Vec3(5.f, 5.f, 1.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0));  // a second object, elsewhere
     EXPECT_EQ(s.find().flagged, flags({0, 0}));
@@ -148,13 +148,13 @@ struct Placement {
     float scale;
     Vec3 offset;
 };
-const Placement k_placements[] = {{1e-3f, Vec3(0.f)}, {1.f, Vec3(0.f)}, {1e3f, Vec3(0.f)},
-                                  {1.f, Vec3(3e4f, -2e4f, 1e4f)}};
+const Placement k_placements[] = {
+    {1e-3f, Vec3(0.f)}, {1.f, Vec3(0.f)}, {1e3f, Vec3(0.f)}, {1.f, Vec3(3e4f, -2e4f, 1e4f)}};
 
 Affine placed(float scale, float roll, Vec3 offset, Vec3 camera) {
     const float c = std::cos(roll), s = std::sin(roll);
-    const float rows[16] = {c * scale, -s * scale, 0, offset.x, s * scale, c * scale, 0, offset.y,
-                            0,         0,          scale, offset.z, 0, 0, 0, 1};
+    const float rows[16] = {c * scale, -s * scale, 0,     offset.x, s * scale, c * scale, 0, offset.y,
+                            0,         0,          scale, offset.z, 0,         0,         0, 1};
     Affine xf = Affine::from_rows(rows);
     for (int r = 0; r < 3; ++r) xf.m[r][3] -= camera[r];  // camera-world space, rounded in float
     return xf;
@@ -180,12 +180,12 @@ TEST(CoplanarOverlap, EmitterInTheRotatedRoomCeilingIsFlaggedAndTheWallsAreNot) 
             // coplanar_test.cpp's Room, rotated about z by `roll`, seen from its camera position.
             const Affine xf = placed(pl.scale, roll, pl.offset, pl.offset);
             Soup s;
-            s.quad_object(Vec3(-1.5f, 1.f, -4.f), Vec3(3.f, 0, 0), Vec3(0, 0, 5.f), xf);   // ceiling
-            s.quad_object(Vec3(-1.5f, -1.f, -4.f), Vec3(0, 0, 5.f), Vec3(3.f, 0, 0), xf);  // floor
-            s.quad_object(Vec3(-1.5f, -1.f, -4.f), Vec3(3.f, 0, 0), Vec3(0, 2.f, 0), xf);  // far wall
-            s.quad_object(Vec3(-1.5f, -1.f, 1.f), Vec3(0, 2.f, 0), Vec3(3.f, 0, 0), xf);   // behind the camera
-            s.quad_object(Vec3(-1.5f, -1.f, -4.f), Vec3(0, 2.f, 0), Vec3(0, 0, 5.f), xf);  // left
-            s.quad_object(Vec3(1.5f, -1.f, -4.f), Vec3(0, 0, 5.f), Vec3(0, 2.f, 0), xf);   // right
+            s.quad_object(Vec3(-1.5f, 1.f, -4.f), Vec3(3.f, 0, 0), Vec3(0, 0, 5.f), xf);     // ceiling
+            s.quad_object(Vec3(-1.5f, -1.f, -4.f), Vec3(0, 0, 5.f), Vec3(3.f, 0, 0), xf);    // floor
+            s.quad_object(Vec3(-1.5f, -1.f, -4.f), Vec3(3.f, 0, 0), Vec3(0, 2.f, 0), xf);    // far wall
+            s.quad_object(Vec3(-1.5f, -1.f, 1.f), Vec3(0, 2.f, 0), Vec3(3.f, 0, 0), xf);     // behind the camera
+            s.quad_object(Vec3(-1.5f, -1.f, -4.f), Vec3(0, 2.f, 0), Vec3(0, 0, 5.f), xf);    // left
+            s.quad_object(Vec3(1.5f, -1.f, -4.f), Vec3(0, 0, 5.f), Vec3(0, 2.f, 0), xf);     // right
             s.quad_object(Vec3(-0.4f, 1.f, -2.9f), Vec3(0.8f, 0, 0), Vec3(0, 0, 0.8f), xf);  // emitter
             EXPECT_EQ(s.find().flagged, flags({1, 0, 0, 0, 0, 0, 1})) << "scale " << pl.scale << " roll " << roll;
         }
@@ -194,10 +194,12 @@ TEST(CoplanarOverlap, EmitterInTheRotatedRoomCeilingIsFlaggedAndTheWallsAreNot) 
 TEST(CoplanarOverlap, InstancesAreComparedInWorldSpaceAndTooManyFacesFlagEverything) {
     // One mesh (a quad) placed twice, the second shifted half its width within the plane: the placements overlap.
     Soup s;
-    s.quad_object(Vec3(0.f, 0.f, 0.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0), placed(1.f, 0.f, Vec3(0.f, 0.f, -2.f), Vec3(0.f)));
+    s.quad_object(Vec3(0.f, 0.f, 0.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0),
+                  placed(1.f, 0.f, Vec3(0.f, 0.f, -2.f), Vec3(0.f)));
     s.objects.push_back(s.objects[0]);
     s.objects[1].to_world = placed(1.f, 0.2f, Vec3(0.5f, 0.f, -2.f), Vec3(0.f));
-    s.quad_object(Vec3(0.f, 0.f, 0.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0), placed(1.f, 0.f, Vec3(0.f, 0.f, -5.f), Vec3(0.f)));
+    s.quad_object(Vec3(0.f, 0.f, 0.f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0),
+                  placed(1.f, 0.f, Vec3(0.f, 0.f, -5.f), Vec3(0.f)));
     EXPECT_EQ(s.find().flagged, flags({1, 1, 0}));
     const CoplanarReport capped = s.find(5);  // 6 faces in all
     EXPECT_TRUE(capped.fallback);
@@ -242,7 +244,5 @@ TEST(CoplanarOverlap, SceneCountsTheObjectsThatGetTheFilter) {
 }  // namespace candela::test
 
 namespace candela::test {
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 }  // namespace candela::test

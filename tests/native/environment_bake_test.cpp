@@ -14,9 +14,9 @@
 #include "core/math.h"
 #include "core/rng.h"
 #include "lights/environment_light.h"
-#include "texture/node_math.h"
 #include "shader_test_helpers.h"
 #include "test_helpers.h"
+#include "texture/node_math.h"
 
 namespace candela::test {
 namespace {
@@ -29,20 +29,23 @@ struct SunEnvironment {
     SunEnvironment(uint32_t w, uint32_t h, TexInterpolation interpolation) {
         std::vector<Color> texels;
         for (uint32_t y = 0; y < h; ++y)
-            for (uint32_t x = 0; x < w; ++x) texels.push_back(Color(0.8f + 0.4f * float(y) / h, 1.f, 1.2f - 0.4f * float(x) / w));
+            for (uint32_t x = 0; x < w; ++x)
+                texels.push_back(Color(0.8f + 0.4f * float(y) / h, 1.f, 1.2f - 0.4f * float(x) / w));
         const uint32_t sx = w * 5 / 8, sy = h * 11 / 16;  // the sun, at mid-latitude
         texels[sy * w + sx] = texels[sy * w + sx + 1] = Color(160000.f, 150000.f, 140000.f);
         texels[(sy + 1) * w + sx] = Color(5000.f);
         const uint32_t tex = b.image(w, h, texels);
         const uint32_t dir = b.op(ShaderOpCode::Coord, 0, 0, 0, {uint32_t(CoordKind::Generated)});
-        reg = b.op(ShaderOpCode::Image, dir, 0, 0,
-                   {tex, uint32_t(interpolation), uint32_t(TexExtension::Repeat), uint32_t(ImageProjection::Equirectangular)});
+        reg = b.op(
+            ShaderOpCode::Image, dir, 0, 0,
+            {tex, uint32_t(interpolation), uint32_t(TexExtension::Repeat), uint32_t(ImageProjection::Equirectangular)});
         program = b.end_program();
     }
 };
 
 /// Pearson's χ² of observed against expected counts, cells expected below 5 pooled (Cochran's rule).
-double chi2_p_value(const std::vector<double>& expected, const std::vector<double>& observed, double* statistic, int* dof) {
+double chi2_p_value(const std::vector<double>& expected, const std::vector<double>& observed, double* statistic,
+                    int* dof) {
     double chi2 = 0.0, pool_e = 0.0, pool_o = 0.0;
     int cells = 0;
     for (size_t c = 0; c < expected.size(); ++c) {
@@ -114,7 +117,8 @@ TEST(EnvironmentBake, SamplingFollowsTheFilteredRadiance) {
         double statistic = 0.0;
         int dof = 0;
         const double p = chi2_p_value(expected, observed, &statistic, &dof);
-        std::printf("environment bake, %s (%u × %u cells): chi2 %.1f, dof %d, p = %.4f\n", c.what, nu, nv, statistic, dof, p);
+        std::printf("environment bake, %s (%u × %u cells): chi2 %.1f, dof %d, p = %.4f\n", c.what, nu, nv, statistic,
+                    dof, p);
         EXPECT_GT(p, alpha) << c.what;
     }
 }

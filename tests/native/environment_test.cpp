@@ -7,16 +7,16 @@
 #include <cmath>
 #include <cstdio>
 
-#include "chi2.h"
 #include <algorithm>
+#include "chi2.h"
 #include "core/math.h"
 #include "core/rng.h"
 #include "lights/environment_light.h"
-#include "scene/scene.h"
 #include "sampling/distribution_2d.h"
-#include "texture/node_math.h"
+#include "scene/scene.h"
 #include "shader_test_helpers.h"
 #include "test_helpers.h"
+#include "texture/node_math.h"
 
 namespace candela::test {
 namespace {
@@ -52,7 +52,7 @@ struct TestEnvironment {
         for (uint32_t y = 0; y < h; ++y)
             for (uint32_t x = 0; x < w; ++x) {
                 Color c(0.1f + 0.8f * float(x) / w, 0.3f, 0.2f + 0.5f * float(y) / h);
-                if (y == 4) c = Color(0.f);                      // a black band
+                if (y == 4) c = Color(0.f);                           // a black band
                 if (x == 20 && y == 11) c = Color(60.f, 50.f, 40.f);  // a small sun
                 texels.push_back(c);
             }
@@ -156,8 +156,9 @@ TEST(EnvironmentLight, MeanRadianceIsTheSolidAngleAverage) {
     for (size_t i = 16 * 4; i < t.size(); ++i) t[i] = Color(1.f);
     const uint32_t tex = b.image(16, 8, t);
     const uint32_t dir = b.op(ShaderOpCode::Coord, 0, 0, 0, {uint32_t(CoordKind::Generated)});
-    const uint32_t img = b.op(ShaderOpCode::Image, dir, 0, 0, {tex, uint32_t(TexInterpolation::Closest), 0,
-                                                                uint32_t(ImageProjection::Equirectangular)});
+    const uint32_t img =
+        b.op(ShaderOpCode::Image, dir, 0, 0,
+             {tex, uint32_t(TexInterpolation::Closest), 0, uint32_t(ImageProjection::Equirectangular)});
     const uint32_t p = b.end_program();
     const EnvironmentMap env(b.library(), p, img, 1);
     EXPECT_NEAR(env.mean_radiance().x, 0.5f, 1e-4f);
@@ -178,8 +179,8 @@ MeshBuilder sphere_scene(float rho) {
 void constant_environment(ProgramBuilder& b, const Color& c) {
     const uint32_t tex = b.image(8, 4, std::vector<Color>(32, c));
     const uint32_t dir = b.op(ShaderOpCode::Coord, 0, 0, 0, {uint32_t(CoordKind::Generated)});
-    const uint32_t img = b.op(ShaderOpCode::Image, dir, 0, 0, {tex, uint32_t(TexInterpolation::Linear), 0,
-                                                                uint32_t(ImageProjection::Equirectangular)});
+    const uint32_t img = b.op(ShaderOpCode::Image, dir, 0, 0,
+                              {tex, uint32_t(TexInterpolation::Linear), 0, uint32_t(ImageProjection::Equirectangular)});
     const uint32_t p = b.end_program();
     b.bind(InputTarget::World, 0, 0, 3, p, img);
 }

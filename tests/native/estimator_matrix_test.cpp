@@ -52,15 +52,16 @@ namespace {
 
 constexpr int k_max_bounces = 30;  // truncation 2^-31: negligible (furnace_expected includes it anyway)
 constexpr double k_z = 5.0;
-constexpr double k_precision = 0.04;   // largest acceptable 5σ of one render
-constexpr int k_samples = 80;          // per pixel, 8 × 8 pixels
+constexpr double k_precision = 0.04;  // largest acceptable 5σ of one render
+constexpr int k_samples = 80;         // per pixel, 8 × 8 pixels
 
 using Setting = std::vector<std::pair<std::string, std::string>>;  // (param, value) pairs
 
 class Matrix {
 public:
     Matrix(FurnaceScene kind, int samples)
-        : m_kind(kind), m_samples(samples),
+        : m_kind(kind),
+          m_samples(samples),
           m_scene(kind == FurnaceScene::EmissiveSphere ? furnace_scene(kind, 8, 4) : furnace_scene(kind, 128, 64),
                   base_params()) {
         m_expected = furnace_expected(kind, k_max_bounces);
@@ -77,8 +78,10 @@ public:
         for (const auto& [key, value] : setting) {
             // Numbers (rr_start_bounce) are integer parameters; everything else is an enum name.
             const bool integer = !value.empty() && value.find_first_not_of("0123456789") == std::string::npos;
-            if (integer) p.set(key, int64_t(std::stoll(value)));
-            else p.set(key, value);
+            if (integer)
+                p.set(key, int64_t(std::stoll(value)));
+            else
+                p.set(key, value);
             what += " " + key + "=" + value;
         }
         if (branching != 1) what += " branching_factor=" + std::to_string(branching);
@@ -94,9 +97,9 @@ public:
         for (size_t i = 0; i < setting.size(); ++i) {
             add_to_pool(setting[i].first + "=" + setting[i].second, deviation, se);
             for (size_t j = i + 1; j < setting.size(); ++j)
-                add_to_pool(setting[i].first + "=" + setting[i].second + " " + setting[j].first + "=" +
-                                setting[j].second,
-                            deviation, se);
+                add_to_pool(
+                    setting[i].first + "=" + setting[i].second + " " + setting[j].first + "=" + setting[j].second,
+                    deviation, se);
         }
     }
 
@@ -110,9 +113,8 @@ public:
         ::testing::Test::RecordProperty(name() + " largest 5 sigma", std::to_string(m_max_tolerance));
         for (const auto& [value, pool] : m_pools) {
             const double mean = pool.deviation / pool.n, se = std::sqrt(pool.variance) / pool.n;
-            EXPECT_LT(std::fabs(mean), k_z * se + m_bias)
-                << name() << ", all " << pool.n << " renders with " << value << ": mean deviation " << mean
-                << ", pooled σ " << se;
+            EXPECT_LT(std::fabs(mean), k_z * se + m_bias) << name() << ", all " << pool.n << " renders with " << value
+                                                          << ": mean deviation " << mean << ", pooled σ " << se;
         }
     }
 
@@ -167,8 +169,11 @@ void cross_product(Matrix& m) {
                     for (const char* rr : {"THROUGHPUT", "ALBEDO"})
                         // ALL casts a shadow ray per emitter per vertex (48 on the emissive sphere): fewer
                         // samples, but it also has the lowest variance per sample.
-                        m.run({{"sampler", sampler}, {"light_sampling", ls}, {"light_pdf", pdf},
-                               {"light_selection", sel}, {"rr_mode", rr}},
+                        m.run({{"sampler", sampler},
+                               {"light_sampling", ls},
+                               {"light_pdf", pdf},
+                               {"light_selection", sel},
+                               {"rr_mode", rr}},
                               1, sel == "ALL" && std::string(ls) != "BSDF_ONLY" ? m.all_samples() : 0);
     m.check_pools();
 }
@@ -207,7 +212,9 @@ TEST(EstimatorMatrix, CyclesRouletteConvergesToOne) {
         for (const auto& sampler : sampler_names())
             for (const char* ls : {"BSDF_ONLY", "LIGHT_ONLY", "MIS"})
                 for (const char* start : {"1", "3"})
-                    m.run({{"sampler", sampler}, {"light_sampling", ls}, {"rr_mode", "SQRT_THROUGHPUT"},
+                    m.run({{"sampler", sampler},
+                           {"light_sampling", ls},
+                           {"rr_mode", "SQRT_THROUGHPUT"},
                            {"rr_start_bounce", start}});
         m.check_pools();
     }

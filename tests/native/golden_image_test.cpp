@@ -56,9 +56,16 @@ SceneArrays golden_room() {
     const uint32_t mirror = b.add_material(Color(0.f), Color(0.f));
     b.add_closure(mirror, "GLOSSY", {{"color_r", 0.95f}, {"color_g", 0.95f}, {"color_b", 0.95f}, {"roughness", 0.f}});
     const uint32_t principled = b.add_material(Color(0.f), Color(0.f));
-    b.add_closure(principled, "PRINCIPLED", {{"color_r", 0.2f}, {"color_g", 0.5f}, {"color_b", 0.8f}, {"roughness", 0.4f},
-                                             {"specular", 0.5f}, {"clearcoat", 0.3f}, {"clearcoat_roughness", 0.1f},
-                                             {"sheen", 0.2f}, {"ior", 1.45f}});
+    b.add_closure(principled, "PRINCIPLED",
+                  {{"color_r", 0.2f},
+                   {"color_g", 0.5f},
+                   {"color_b", 0.8f},
+                   {"roughness", 0.4f},
+                   {"specular", 0.5f},
+                   {"clearcoat", 0.3f},
+                   {"clearcoat_roughness", 0.1f},
+                   {"sheen", 0.2f},
+                   {"ior", 1.45f}});
     const uint32_t lamp = b.add_material(Color(0.f), Color(6.f, 5.f, 4.f));
 
     const float X = 2.f, Y = 1.5f, Z0 = -3.f, Z1 = 3.f;
@@ -83,8 +90,8 @@ SceneArrays golden_room() {
     b.add_instance(b.add_triangle(Vec3(-0.4f, 1.45f, -1.6f), Vec3(0.4f, 1.45f, -1.6f), Vec3(0.f, 1.45f, -2.4f), lamp));
     b.add_point_light(Vec3(1.2f, 1.f, -1.f), Color(8.f, 8.f, 10.f), 0.1f);
     std::vector<float> spot(light_columns().size(), 0.f);
-    for (int c = 0; c < 3; ++c) spot[c] = 30.f;                      // strength
-    spot[3] = -1.5f, spot[4] = 1.2f, spot[5] = -0.5f;                  // position
+    for (int c = 0; c < 3; ++c) spot[c] = 30.f;        // strength
+    spot[3] = -1.5f, spot[4] = 1.2f, spot[5] = -0.5f;  // position
     const Vec3 spot_dir = normalize(Vec3(0.5f, -0.8f, -0.33f));
     spot[6] = spot_dir.x, spot[7] = spot_dir.y, spot[8] = spot_dir.z;  // direction
     spot[15] = 0.05f, spot[16] = 0.9f, spot[17] = 0.3f;                // radius, spot size, blend
@@ -92,10 +99,10 @@ SceneArrays golden_room() {
     b.add_area_light(Vec3(1.5f, 0.f, -2.9f), Vec3(0.6f, 0.f, 0.f), Vec3(0.f, 0.4f, 0.f), Vec3(0.f, 0.f, 1.f),
                      Color(10.f, 6.f, 3.f), /*disk=*/true);
     std::vector<float> sun(light_columns().size(), 0.f);
-    for (int c = 0; c < 3; ++c) sun[c] = 3.f;                        // irradiance, W/m²
-    const Vec3 sun_dir = normalize(Vec3(-0.3f, -0.5f, 0.81f));       // direction of travel: through the window
+    for (int c = 0; c < 3; ++c) sun[c] = 3.f;                   // irradiance, W/m²
+    const Vec3 sun_dir = normalize(Vec3(-0.3f, -0.5f, 0.81f));  // direction of travel: through the window
     sun[6] = sun_dir.x, sun[7] = sun_dir.y, sun[8] = sun_dir.z;
-    sun[18] = 0.05f;                                                  // angle
+    sun[18] = 0.05f;  // angle
     b.add_light(2, sun);
     b.world_color = {0.05f, 0.06f, 0.08f};
     return b.arrays();
@@ -133,7 +140,9 @@ const std::vector<GoldenCase>& golden_cases() {
         {"halton", {{"sampler", S("HALTON")}}, 0x692f87180c418505ull},
         {"hammersley", {{"sampler", S("HAMMERSLEY")}}, 0x339cb03665fd4f32ull},
         {"sobol", {{"sampler", S("SOBOL")}}, 0xf3ab392d0986279cull},
-        {"cycles_equal", {{"light_selection", S("POWER")}, {"rr_mode", S("SQRT_THROUGHPUT")}, {"rr_start_bounce", int64_t(2)}}, 0x52a61710a19e9102ull},
+        {"cycles_equal",
+         {{"light_selection", S("POWER")}, {"rr_mode", S("SQRT_THROUGHPUT")}, {"rr_start_bounce", int64_t(2)}},
+         0x52a61710a19e9102ull},
         {"uniform_selection", {{"light_selection", S("UNIFORM")}}, 0x003b03fc6d4d9123ull},
         {"area_selection", {{"light_selection", S("AREA")}}, 0x504d690fd97245edull},
         {"all_lights", {{"light_selection", S("ALL")}}, 0x77ec10bc6c9c9d0eull},
@@ -153,8 +162,14 @@ const std::vector<GoldenCase>& golden_cases() {
         {"transparent", {{"film_transparent", true}}, 0x6442ccf14e0b4690ull},
         {"noise_stop", {{"samples", int64_t(256)}, {"noise_threshold", 0.25}}, 0x3aa6b438f8f70c55ull},
         {"one_thread_tiles", {{"threads", int64_t(1)}, {"tile_size", int64_t(7)}}, 0xf3ab392d0986279cull},
-        {"gaussian_dof", {{"pixel_filter", S("GAUSSIAN")}, {"filter_width", 2.0}, {"use_dof", true},
-                          {"focus_distance", 2.0}, {"aperture_fstop", 2.8}, {"aperture_blades", int64_t(6)}}, 0x8cd9a03786fe8121ull},
+        {"gaussian_dof",
+         {{"pixel_filter", S("GAUSSIAN")},
+          {"filter_width", 2.0},
+          {"use_dof", true},
+          {"focus_distance", 2.0},
+          {"aperture_fstop", 2.8},
+          {"aperture_blades", int64_t(6)}},
+         0x8cd9a03786fe8121ull},
     };
     return cases;
 }

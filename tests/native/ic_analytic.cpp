@@ -48,9 +48,12 @@ HemisphereSamples analytic_gather(const AnalyticField& field, const Vec3& x, con
 namespace {
 
 const std::vector<Vec3>& room_polygon(RoomEmitter e) {
-    static const std::vector<Vec3> rect = {{-0.3f, -0.2f, AnalyticRoom::k_height}, {0.5f, -0.2f, AnalyticRoom::k_height},
-                                           {0.5f, 0.4f, AnalyticRoom::k_height}, {-0.3f, 0.4f, AnalyticRoom::k_height}};
-    static const std::vector<Vec3> tri = {{-0.4f, -0.3f, AnalyticRoom::k_height}, {0.5f, -0.2f, AnalyticRoom::k_height},
+    static const std::vector<Vec3> rect = {{-0.3f, -0.2f, AnalyticRoom::k_height},
+                                           {0.5f, -0.2f, AnalyticRoom::k_height},
+                                           {0.5f, 0.4f, AnalyticRoom::k_height},
+                                           {-0.3f, 0.4f, AnalyticRoom::k_height}};
+    static const std::vector<Vec3> tri = {{-0.4f, -0.3f, AnalyticRoom::k_height},
+                                          {0.5f, -0.2f, AnalyticRoom::k_height},
                                           {0.1f, 0.6f, AnalyticRoom::k_height}};
     return e == RoomEmitter::Rectangle ? rect : tri;
 }

@@ -44,7 +44,7 @@ TEST(IcError, RecordsInFrontAreNotUsed) {
     // a = 0.3, R = 2: in front when (x − x_i)·(n + n_i)/2 < −0.1·a·R = −0.06.
     const IcRecord r = record(Vec3(0.f), k_up, 2.f, Color(1.f));
     float err;
-    EXPECT_TRUE(ic_in_front(r, Vec3(0.f, 0.f, -0.1f), k_up, 0.3f));   // the record 0.1 above x
+    EXPECT_TRUE(ic_in_front(r, Vec3(0.f, 0.f, -0.1f), k_up, 0.3f));  // the record 0.1 above x
     EXPECT_FALSE(ic_usable(r, Vec3(0.f, 0.f, -0.1f), k_up, 0.3f, &err));
     EXPECT_FALSE(ic_in_front(r, Vec3(0.f, 0.f, -0.05f), k_up, 0.3f));  // 0.05: within the tolerance
     EXPECT_TRUE(ic_usable(r, Vec3(0.f, 0.f, -0.05f), k_up, 0.3f, &err));

@@ -20,11 +20,11 @@
 #include <vector>
 
 #include "film/film.h"
+#include "ic_test_scenes.h"
 #include "integrators/camera_tiles.h"
 #include "integrators/irradiance_cache/ic_integrator.h"
 #include "scene/scene.h"
 #include "session/session.h"
-#include "ic_test_scenes.h"
 
 namespace candela::test {
 namespace {
@@ -97,7 +97,8 @@ TEST(IrradianceCache, EqualsPathAsTheErrorTendsToZero) {
     const double z_image = std::fabs(sum_a - sum_b) / std::sqrt(var);
     EXPECT_LT(z_image, 5.0) << sum_a / (w * h) << " vs " << sum_b / (w * h);
     EXPECT_LT(5.0 * std::sqrt(var) / sum_b, 0.015) << "precise enough";
-    std::printf("largest block deviation %.2f σ, image %.2f σ (σ = %.2f %%)\n", worst, z_image, 100 * std::sqrt(var) / sum_b);
+    std::printf("largest block deviation %.2f σ, image %.2f σ (σ = %.2f %%)\n", worst, z_image,
+                100 * std::sqrt(var) / sum_b);
 }
 
 Rendered lit_render(int threads, int tile) {
@@ -153,8 +154,10 @@ TEST(IrradianceCache, CancelIsSeenInEveryStage) {
             p.set("ic_gather_rays", int64_t(64));
             const uint64_t at = 3000;
             pr.probe.on_gather_ray = [&](IcStage s) {
-                if (pr.cancel.cancelled()) ++pr.after_cancel;
-                else if (s == stage && ++pr.gather_rays == at) pr.cancel.cancel();
+                if (pr.cancel.cancelled())
+                    ++pr.after_cancel;
+                else if (s == stage && ++pr.gather_rays == at)
+                    pr.cancel.cancel();
             };
             EXPECT_EQ(run_probed(pr, p, threads), StopReason::Cancelled);
             EXPECT_EQ(pr.gather_rays.load(), at) << "the cancel was reached";
@@ -167,8 +170,10 @@ TEST(IrradianceCache, CancelIsSeenInEveryStage) {
         p.set("ic_gather_rays", int64_t(16));
         const uint64_t at = 20000;
         pr.probe.on_camera_path = [&] {
-            if (pr.cancel.cancelled()) ++pr.after_cancel;
-            else if (++pr.camera_paths == at) pr.cancel.cancel();
+            if (pr.cancel.cancelled())
+                ++pr.after_cancel;
+            else if (++pr.camera_paths == at)
+                pr.cancel.cancel();
         };
         EXPECT_EQ(run_probed(pr, p, threads), StopReason::Cancelled);
         const uint64_t pass = uint64_t(camera_max_pass(Film(32, 32, 0, 0, 8), PixelSampling::from_params(p)));

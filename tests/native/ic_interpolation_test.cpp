@@ -57,7 +57,8 @@ TEST(IcGather, IrradianceIsUnbiased) {
         for (const Vec3 x : {Vec3(0.f, 0.f, 0.f), Vec3(0.6f, -0.3f, 0.f), Vec3(-0.8f, 0.7f, 0.f), Vec3(0.2f, 0.9f, 0.f),
                              Vec3(0.9f, -0.9f, 0.f)}) {
             std::vector<double> E;
-            for (int k = 0; k < 128; ++k) E.push_back(estimate_gather(analytic_gather(field, x, frame, strata, rng)).E.x);
+            for (int k = 0; k < 128; ++k)
+                E.push_back(estimate_gather(analytic_gather(field, x, frame, strata, rng)).E.x);
             const MeanSd m = mean_se(E);
             const double exact = room.exact(x);
             EXPECT_GT(m.se, 0.0);
@@ -96,9 +97,10 @@ TEST(IcGather, GradientsAgreeWithTheClosedForm) {
     for (RoomEmitter e : {RoomEmitter::Rectangle, RoomEmitter::Triangle}) {  // Lambert's formula tilts the normal
         const AnalyticRoom room{e};
         const AnalyticField field = room.field();
-        const std::vector<Vec3> corners = e == RoomEmitter::Rectangle
-                                              ? std::vector<Vec3>{{-0.3f, -0.2f, 1.2f}, {0.5f, -0.2f, 1.2f}, {0.5f, 0.4f, 1.2f}, {-0.3f, 0.4f, 1.2f}}
-                                              : std::vector<Vec3>{{-0.4f, -0.3f, 1.2f}, {0.5f, -0.2f, 1.2f}, {0.1f, 0.6f, 1.2f}};
+        const std::vector<Vec3> corners =
+            e == RoomEmitter::Rectangle
+                ? std::vector<Vec3>{{-0.3f, -0.2f, 1.2f}, {0.5f, -0.2f, 1.2f}, {0.5f, 0.4f, 1.2f}, {-0.3f, 0.4f, 1.2f}}
+                : std::vector<Vec3>{{-0.4f, -0.3f, 1.2f}, {0.5f, -0.2f, 1.2f}, {0.1f, 0.6f, 1.2f}};
         for (const Vec3 x : {Vec3(0.7f, -0.5f, 0.f), Vec3(-0.6f, 0.4f, 0.f), Vec3(0.1f, 0.05f, 0.f)}) {
             std::vector<double> rot[2], tr[2];
             for (int k = 0; k < 48; ++k) {
@@ -117,11 +119,14 @@ TEST(IcGather, GradientsAgreeWithTheClosedForm) {
                 // n rotated by ±h about the axis: n ± h (axis × n).
                 const Vec3 t = cross(axis, k_up);
                 const double fd_r = (polygon_irradiance(corners, x, normalize(k_up + t * h)) -
-                                     polygon_irradiance(corners, x, normalize(k_up - t * h))) / (2.0 * h);
+                                     polygon_irradiance(corners, x, normalize(k_up - t * h))) /
+                                    (2.0 * h);
                 const MeanSd m = mean_se(rot[c]);
                 EXPECT_LT(std::fabs(m.mean - fd_r), 4.0 * m.se + bound)
-                    << "emitter " << int(e) << " axis " << c << ": " << m.mean << " vs " << fd_r << " (bound " << bound << ")";
-                fd_t[c] = (polygon_irradiance(corners, x + axis * h, k_up) - polygon_irradiance(corners, x - axis * h, k_up)) /
+                    << "emitter " << int(e) << " axis " << c << ": " << m.mean << " vs " << fd_r << " (bound " << bound
+                    << ")";
+                fd_t[c] = (polygon_irradiance(corners, x + axis * h, k_up) -
+                           polygon_irradiance(corners, x - axis * h, k_up)) /
                           (2.0 * h);
             }
             const double est[2] = {mean_se(tr[0]).mean, mean_se(tr[1]).mean};
@@ -150,7 +155,8 @@ IcCache place_records(const AnalyticRoom& room, float a, float half, int n, int 
         for (int ix = 0; ix <= n; ++ix) {
             const Vec3 x(-half + 2.f * half * ix / n, -half + 2.f * half * iy / n, 0.f);
             if (cache.covered(x, k_up)) continue;
-            IcRecord r = record_from_gather(estimate_gather(analytic_gather(field, x, frame, strata, rng)), x, frame, rr);
+            IcRecord r =
+                record_from_gather(estimate_gather(analytic_gather(field, x, frame, strata, rng)), x, frame, rr);
             if (exact_E) r.E = Color(float(room.exact(x)));
             cache.insert(r);
         }
@@ -190,7 +196,8 @@ TEST(IcInterpolation, ConvergesAsTheErrorShrinksAndGradientsLowerIt) {
                 std::vector<double> diff;
                 for (size_t i = 0; i < err.with.size(); ++i) diff.push_back(err.without[i] - err.with[i]);
                 const MeanSd d = mean_se(diff);
-                EXPECT_GT(d.mean, 4.0 * d.se) << "gradients do not lower the error at a = " << a << ", emitter " << int(e);
+                EXPECT_GT(d.mean, 4.0 * d.se)
+                    << "gradients do not lower the error at a = " << a << ", emitter " << int(e);
             }
         }
         for (size_t k = 0; k + 1 < with.size(); ++k) {

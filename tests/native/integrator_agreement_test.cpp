@@ -78,14 +78,16 @@ std::vector<uint8_t> no_specular_mask(const Case& c, int margin) {
         for (int x = 0; x < w; ++x) {
             SurfaceHit hit;
             const Ray ray = scene.camera().generate_ray({x + 0.5f, y + 0.5f});
-            sees[size_t(y) * w + x] = scene.intersect(ray, &hit) && (scene.material_flags(hit.material) & k_bsdf_specular);
+            sees[size_t(y) * w + x] =
+                scene.intersect(ray, &hit) && (scene.material_flags(hit.material) & k_bsdf_specular);
         }
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int dy = -margin; dy <= margin; ++dy)
                 for (int dx = -margin; dx <= margin; ++dx) {
                     const int sx = x + dx, sy = y + dy;
-                    if (sx >= 0 && sy >= 0 && sx < w && sy < h && sees[size_t(sy) * w + sx]) mask[size_t(y) * w + x] = 0;
+                    if (sx >= 0 && sy >= 0 && sx < w && sy < h && sees[size_t(sy) * w + sx])
+                        mask[size_t(y) * w + x] = 0;
                 }
     return mask;
 }

@@ -47,7 +47,9 @@ TEST_P(IntegratorFurnace, ConvergesToTheClosedFormForEverySampler) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue15, IntegratorFurnace, ::testing::Values("LIGHT", "BDPT", "SURFACE_SAMPLING", "SOURCE_SHOOTING", "RECEIVER_GATHERING"),
+INSTANTIATE_TEST_SUITE_P(Issue15, IntegratorFurnace,
+                         ::testing::Values("LIGHT", "BDPT", "SURFACE_SAMPLING", "SOURCE_SHOOTING",
+                                           "RECEIVER_GATHERING"),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace

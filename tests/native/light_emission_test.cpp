@@ -148,7 +148,8 @@ TEST(LightEmission, DirectionsFollowTheirDensity) {
             const Vec3 p_fixed = std::holds_alternative<TriangleLight>(c.light) ? triangle().p0 : Vec3(0.f);
             Pcg32 rng(21, 1);
             auto sampler = [&](Vec2 u, float uc, Vec3* w) {
-                const EmissionSample s = light_sample_le(c.light, {rng.next_float(), rng.next_float()}, u, uc, k_bounds);
+                const EmissionSample s =
+                    light_sample_le(c.light, {rng.next_float(), rng.next_float()}, u, uc, k_bounds);
                 if (!s.valid()) return false;
                 *w = s.d;
                 return true;
@@ -157,7 +158,8 @@ TEST(LightEmission, DirectionsFollowTheirDensity) {
                 float pp = 0.f, pd = 0.f;
                 // Area-like lights: the density of d is that of a cosine lobe on a side; a triangle's either side.
                 if (const auto* t = std::get_if<TriangleLight>(&c.light)) {
-                    light_pdf_le(c.light, p_fixed, dot(w, t->normal) >= 0.f ? t->normal : -t->normal, w, k_bounds, &pp, &pd);
+                    light_pdf_le(c.light, p_fixed, dot(w, t->normal) >= 0.f ? t->normal : -t->normal, w, k_bounds, &pp,
+                                 &pd);
                 } else {
                     light_pdf_le(c.light, Vec3(0.f), Vec3(0.f), w, k_bounds, &pp, &pd);
                 }
@@ -194,30 +196,40 @@ TEST(LightEmission, OriginsAreUniformOnTheEmitter) {
         return uniform_cells_p_value(counts, n);
     };
     const AreaLight rect = area(false), ell = area(true);
-    EXPECT_GT(run(rect, [&](const EmissionSample& s) {
-                  const Vec3 q = s.p - rect.center;
-                  return Vec2{dot(q, rect.u) / length_squared(rect.u) + 0.5f, dot(q, rect.v) / length_squared(rect.v) + 0.5f};
-              }), k_alpha);
+    EXPECT_GT(run(rect,
+                  [&](const EmissionSample& s) {
+                      const Vec3 q = s.p - rect.center;
+                      return Vec2{dot(q, rect.u) / length_squared(rect.u) + 0.5f,
+                                  dot(q, rect.v) / length_squared(rect.v) + 0.5f};
+                  }),
+              k_alpha);
     auto disk = [](float x, float y) {  // a point of the unit disk → (r², φ/2π): uniform on the square
         return Vec2{std::min(x * x + y * y, 0.99999f), float((std::atan2(y, x) + M_PI) / (2.0 * M_PI))};
     };
-    EXPECT_GT(run(ell, [&](const EmissionSample& s) {
-                  const Vec3 q = s.p - ell.center;
-                  return disk(2.f * dot(q, ell.u) / length_squared(ell.u), 2.f * dot(q, ell.v) / length_squared(ell.v));
-              }), k_alpha);
+    EXPECT_GT(run(ell,
+                  [&](const EmissionSample& s) {
+                      const Vec3 q = s.p - ell.center;
+                      return disk(2.f * dot(q, ell.u) / length_squared(ell.u),
+                                  2.f * dot(q, ell.v) / length_squared(ell.v));
+                  }),
+              k_alpha);
     const TriangleLight tri = triangle();
-    EXPECT_GT(run(tri, [&](const EmissionSample& s) {
-                  // Uniform on a triangle: (1 − b0)² and b1/(b1 + b2) are independent and uniform.
-                  const Vec2 b = tri.barycentrics(s.p);
-                  const float b0 = 1.f - b.x - b.y;
-                  return Vec2{(1.f - b0) * (1.f - b0), b.x + b.y > 0.f ? b.x / (b.x + b.y) : 0.5f};
-              }), k_alpha);
+    EXPECT_GT(run(tri,
+                  [&](const EmissionSample& s) {
+                      // Uniform on a triangle: (1 − b0)² and b1/(b1 + b2) are independent and uniform.
+                      const Vec2 b = tri.barycentrics(s.p);
+                      const float b0 = 1.f - b.x - b.y;
+                      return Vec2{(1.f - b0) * (1.f - b0), b.x + b.y > 0.f ? b.x / (b.x + b.y) : 0.5f};
+                  }),
+              k_alpha);
     const SunLight sn = sun(0.f);
-    EXPECT_GT(run(sn, [&](const EmissionSample& s) {
-                  const Frame f(sn.to_sun);
-                  const Vec3 q = (s.p - k_bounds.center) / k_bounds.radius;
-                  return disk(dot(q, f.s), dot(q, f.t));
-              }), k_alpha);
+    EXPECT_GT(run(sn,
+                  [&](const EmissionSample& s) {
+                      const Frame f(sn.to_sun);
+                      const Vec3 q = (s.p - k_bounds.center) / k_bounds.radius;
+                      return disk(dot(q, f.s), dot(q, f.t));
+                  }),
+              k_alpha);
 }
 
 // Every distant ray starts outside the bounding sphere and travels through it.

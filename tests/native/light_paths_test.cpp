@@ -131,7 +131,8 @@ TEST(LightPathRules, CausticsSwitchesSplitGlassAsCyclesDoes) {
     EXPECT_TRUE(caustics_filter(glass, cos_o, false, false).empty());
     // Diffuse lobes always stay; glossy reflection goes with Reflective.
     Bsdf plastic(LambertBsdf{}, Color(0.5f));
-    plastic.add(MicrofacetReflection{Microfacet{MicrofacetDistribution::GGX, 0.1f, 0.1f}, SpecularFresnel{}}, Color(0.5f));
+    plastic.add(MicrofacetReflection{Microfacet{MicrofacetDistribution::GGX, 0.1f, 0.1f}, SpecularFresnel{}},
+                Color(0.5f));
     EXPECT_EQ(caustics_filter(plastic, cos_o, false, true).size(), 1);
     EXPECT_FALSE(caustics_filter_changes(plastic, true, false));
     // Only at vertices reached by diffuse rays.
@@ -140,10 +141,12 @@ TEST(LightPathRules, CausticsSwitchesSplitGlassAsCyclesDoes) {
     LightPathState camera;
     BsdfSlot slot;
     EXPECT_EQ(vertex_scattering_bsdf(glass, s, camera, cos_o, {}, slot).size(), 1);
-    EXPECT_TRUE(std::holds_alternative<MicrofacetDielectric>(vertex_scattering_bsdf(glass, s, camera, cos_o, {}, slot)[0].lobe));
+    EXPECT_TRUE(std::holds_alternative<MicrofacetDielectric>(
+        vertex_scattering_bsdf(glass, s, camera, cos_o, {}, slot)[0].lobe));
     LightPathState diffuse;
     after_scatter(diffuse, sample_of(k_bsdf_reflection | k_bsdf_diffuse));
-    EXPECT_TRUE(std::holds_alternative<MicrofacetReflection>(vertex_scattering_bsdf(glass, s, diffuse, cos_o, {}, slot)[0].lobe));
+    EXPECT_TRUE(std::holds_alternative<MicrofacetReflection>(
+        vertex_scattering_bsdf(glass, s, diffuse, cos_o, {}, slot)[0].lobe));
 }
 
 // ---- bump shadowing ----------------------------------------------------------------------------------------------
@@ -164,7 +167,8 @@ TEST(BumpShadowing, ChiangTermScalesOnlyDiffuseLobesAndKeepsThePdf) {
     ASSERT_LT(g, 1.f);
     EXPECT_NEAR(b.term(grazing), -g * g * g + g * g + g, 1e-6f);
     Bsdf mixed(LambertBsdf{}, Color(0.5f));
-    mixed.add(MicrofacetReflection{Microfacet{MicrofacetDistribution::GGX, 0.3f, 0.3f}, SpecularFresnel{}}, Color(0.5f));
+    mixed.add(MicrofacetReflection{Microfacet{MicrofacetDistribution::GGX, 0.3f, 0.3f}, SpecularFresnel{}},
+              Color(0.5f));
     Bsdf shadowed = mixed;
     shadowed.set_bump_shadowing(b);
     const Vec3 wo = normalize(Vec3(0.f, 0.3f, 1.f));
@@ -201,7 +205,8 @@ SceneArrays transparent_stack(int planes, float weight, bool lit_diffuse_wall) {
     MeshBuilder m;
     const uint32_t glass = m.add_material(Color(0.f), Color(0.f));
     m.add_closure(glass, "TRANSPARENT", {{"color_r", weight}, {"color_g", weight}, {"color_b", weight}});
-    for (int k = 0; k < planes; ++k) m.add_instance(m.add_quad_z(-20.f, 20.f, -20.f, 20.f, -1.f - float(k) * 0.5f, glass));
+    for (int k = 0; k < planes; ++k)
+        m.add_instance(m.add_quad_z(-20.f, 20.f, -20.f, 20.f, -1.f - float(k) * 0.5f, glass));
     if (lit_diffuse_wall) {
         const uint32_t wall = m.add_material(Color(0.8f), Color(0.f));
         m.add_instance(m.add_quad_z(-20.f, 20.f, -20.f, 20.f, -4.f, wall));
@@ -309,7 +314,8 @@ SceneArrays light_path_emitter(int planes) {
     MeshBuilder m;
     const uint32_t glass = m.add_material(Color(0.f), Color(0.f));
     m.add_closure(glass, "TRANSPARENT", {{"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}});
-    for (int k = 0; k < planes; ++k) m.add_instance(m.add_quad_z(-20.f, 20.f, -20.f, 20.f, -1.f - float(k) * 0.5f, glass));
+    for (int k = 0; k < planes; ++k)
+        m.add_instance(m.add_quad_z(-20.f, 20.f, -20.f, 20.f, -1.f - float(k) * 0.5f, glass));
     const uint32_t lamp = m.add_material(Color(0.f), Color(0.f));
     m.add_instance(m.add_quad_z(-20.f, 20.f, -20.f, 20.f, -4.f, lamp));
     SceneArrays a = m.arrays();
@@ -392,7 +398,8 @@ SceneArrays bent_floor() {
     ProgramBuilder pb;
     const Vec3 n(std::sin(0.5f), std::cos(0.5f), 0.f);
     const uint32_t color = pb.constant((n + Vec3(1.f)) * 0.5f);
-    const uint32_t reg = pb.op(ShaderOpCode::NormalMap, color, pb.constant(Vec3(1.f)), 0, {uint32_t(NormalMapSpace::World)});
+    const uint32_t reg =
+        pb.op(ShaderOpCode::NormalMap, color, pb.constant(Vec3(1.f)), 0, {uint32_t(NormalMapSpace::World)});
     const uint32_t prog = pb.end_program();
     pb.bind(InputTarget::Normal, 0, 0, 3, prog, reg);
     pb.add_to(a);

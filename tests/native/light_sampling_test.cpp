@@ -20,9 +20,9 @@
 namespace candela {
 namespace {
 
+using test::chi2_test;
 using test::Chi2Config;
 using test::Chi2Result;
-using test::chi2_test;
 
 // ---- helpers ---------------------------------------------------------------------------------------------
 
@@ -152,7 +152,8 @@ TEST(SphericalRectangle, MatchesAreaSamplingOnPbrtConfiguration) {
         const Vec2 u{to_unit_float(hammersley(0, i, n)), to_unit_float(hammersley(1, i, n))};
         const Vec3 q = rect.sample_point(u);
         sph += f(q.x, q.y, q.z) / (1.0 / rect.S);
-        const double a[3] = {v00.x + u.x * double(ex.x) + u.y * double(ey.x), v00.y + u.x * double(ex.y) + u.y * double(ey.y),
+        const double a[3] = {v00.x + u.x * double(ex.x) + u.y * double(ey.x),
+                             v00.y + u.x * double(ex.y) + u.y * double(ey.y),
                              v00.z + u.x * double(ex.z) + u.y * double(ey.z)};
         const double w[3] = {a[0] - p.x, a[1] - p.y, a[2] - p.z};
         const double d2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
@@ -164,7 +165,8 @@ TEST(SphericalRectangle, MatchesAreaSamplingOnPbrtConfiguration) {
     std::printf("spherical rectangle: %.6f, area: %.6f, |diff| %.2e\n", sph, ar, std::fabs(sph - ar));
     EXPECT_LT(std::fabs(sph - ar), 1e-3);
     // The solid angle agrees with two Van Oosterom–Strackee triangles.
-    const double omega = spherical_triangle_solid_angle(p, v00, v10, v10 + ey) + spherical_triangle_solid_angle(p, v00, v10 + ey, v01);
+    const double omega =
+        spherical_triangle_solid_angle(p, v00, v10, v10 + ey) + spherical_triangle_solid_angle(p, v00, v10 + ey, v01);
     EXPECT_NEAR(rect.S, omega, 1e-6 * omega);
 }
 
@@ -205,7 +207,8 @@ TEST(SphericalTriangle, LambertUnitRightTriangle) {
 TEST(SphericalRectangle, LambertTwoByTwoSquare) {
     const Light rect = make_rect(Vec3(0, 0, 1), Vec3(2, 0, 0), Vec3(0, 2, 0), Vec3(0, 0, -1));
     const LightSampleContext ctx{Vec3(0.f), Vec3(0, 0, 1)};
-    const double exact = lambert_polygon({Vec3(-1, -1, 1), Vec3(1, -1, 1), Vec3(1, 1, 1), Vec3(-1, 1, 1)}, ctx.p, ctx.n);
+    const double exact =
+        lambert_polygon({Vec3(-1, -1, 1), Vec3(1, -1, 1), Vec3(1, 1, 1), Vec3(-1, 1, 1)}, ctx.p, ctx.n);
     EXPECT_NEAR(exact, 1.740840, 1e-6);
     for (LightPdfMode mode : {LightPdfMode::Area, LightPdfMode::SolidAngle}) {
         const Estimate e = irradiance(rect, ctx, mode, 400000);
@@ -309,32 +312,36 @@ std::vector<Chi2Case> chi2_cases() {
     };
     const TriangleLight tri = make_triangle(Vec3(-1, -0.5f, 0.8f), Vec3(1.5f, -0.3f, 1.2f), Vec3(0.2f, 1.4f, 0.6f));
     for (LightPdfMode mode : {LightPdfMode::Area, LightPdfMode::SolidAngle}) {
-        out.push_back({std::string("triangle_") + light_pdf_mode_name(mode), from_light(tri, mode), [ctx, tri, mode](const Vec3& w) {
+        out.push_back({std::string("triangle_") + light_pdf_mode_name(mode), from_light(tri, mode),
+                       [ctx, tri, mode](const Vec3& w) {
                            const double t = intersect_triangle(ctx.p, w, tri.p0, tri.p1, tri.p2);
                            return t > 0 ? double(tri.pdf_li(ctx, w, float(t), mode)) : 0.0;
                        }});
     }
     const AreaLight rect = make_rect(Vec3(0.3f, 0.2f, 1.f), Vec3(2.f, 0.f, 0.5f), Vec3(0.f, 1.5f, 0.f),
                                      normalize(cross(Vec3(0.f, 1.5f, 0.f), Vec3(2.f, 0.f, 0.5f))));
-    const AreaLight ell = make_rect(Vec3(0.3f, 0.2f, 1.f), Vec3(2.f, 0.f, 0.f), Vec3(0.f, 1.5f, 0.f), Vec3(0, 0, -1), 1.f, true);
+    const AreaLight ell =
+        make_rect(Vec3(0.3f, 0.2f, 1.f), Vec3(2.f, 0.f, 0.f), Vec3(0.f, 1.5f, 0.f), Vec3(0, 0, -1), 1.f, true);
     for (const AreaLight& a : {rect, ell})
         for (LightPdfMode mode : {LightPdfMode::Area, LightPdfMode::SolidAngle}) {
-            out.push_back({std::string(a.ellipse ? "ellipse_" : "rectangle_") + light_pdf_mode_name(mode), from_light(a, mode),
-                           [ctx, a, mode](const Vec3& w) {
+            out.push_back({std::string(a.ellipse ? "ellipse_" : "rectangle_") + light_pdf_mode_name(mode),
+                           from_light(a, mode), [ctx, a, mode](const Vec3& w) {
                                float t;
                                return a.intersect(ctx.p, w, 0.f, 1e30f, &t) ? double(a.pdf_li(ctx, w, t, mode)) : 0.0;
                            }});
         }
     // Sphere cone (outside, large and small), and inside (area sampling).
-    for (auto [center, r] : {std::pair<Vec3, float>{Vec3(0.5f, 0.3f, 1.5f), 1.f}, {Vec3(2.5f, 0.3f, 1.5f), 0.6f},
+    for (auto [center, r] : {std::pair<Vec3, float>{Vec3(0.5f, 0.3f, 1.5f), 1.f},
+                             {Vec3(2.5f, 0.3f, 1.5f), 0.6f},
                              {Vec3(0.3f, -0.1f, 0.2f), 1.f}}) {
-        out.push_back({"sphere_r" + std::to_string(r) + "_z" + std::to_string(center.z),
-                       [ctx, center = center, r = r](Vec2 u, float, Vec3* w) {
-                           const SphereSample s = sample_sphere(ctx.p, center, r, u);
-                           *w = s.w;
-                           return s.pdf > 0.f;
-                       },
-                       [ctx, center = center, r = r](const Vec3& w) { return double(sphere_pdf(ctx.p, center, r, w)); }});
+        out.push_back(
+            {"sphere_r" + std::to_string(r) + "_z" + std::to_string(center.z),
+             [ctx, center = center, r = r](Vec2 u, float, Vec3* w) {
+                 const SphereSample s = sample_sphere(ctx.p, center, r, u);
+                 *w = s.w;
+                 return s.pdf > 0.f;
+             },
+             [ctx, center = center, r = r](const Vec3& w) { return double(sphere_pdf(ctx.p, center, r, w)); }});
     }
     // Point light with a radius (a disk facing the point), a soft sun, the world.
     PointLight pl;
@@ -377,7 +384,8 @@ TEST(LightSamplingChi2, EveryRoutineMatchesItsPdf) {
         cfg.seed = 40 + i;
         cfg.integration_pieces = 8;
         const Chi2Result r = chi2_test(cases[i].sample, cases[i].pdf, cfg);
-        std::printf("chi2 %-24s p = %.4f  dof %d  ∫pdf = %.5f\n", cases[i].name.c_str(), r.p_value, r.dof, r.pdf_integral);
+        std::printf("chi2 %-24s p = %.4f  dof %d  ∫pdf = %.5f\n", cases[i].name.c_str(), r.p_value, r.dof,
+                    r.pdf_integral);
         EXPECT_GT(r.p_value, alpha) << cases[i].name << ": " << r.summary();
         EXPECT_NEAR(r.pdf_integral, 1.0, 2e-3) << cases[i].name;
     }
@@ -385,7 +393,8 @@ TEST(LightSamplingChi2, EveryRoutineMatchesItsPdf) {
 
 // ---- pdf consistency and degenerate inputs -----------------------------------------------------------------
 
-void check_sample(const Light& light, const LightSampleContext& ctx, Vec2 u, LightPdfMode mode, const std::string& what) {
+void check_sample(const Light& light, const LightSampleContext& ctx, Vec2 u, LightPdfMode mode,
+                  const std::string& what) {
     const LightSample s = light_sample_li(light, ctx, u, mode);
     ASSERT_TRUE(std::isfinite(s.pdf) && s.pdf >= 0.f) << what;
     if (!s.valid()) return;
@@ -401,12 +410,14 @@ TEST(LightSamplingPdf, SampledPdfEqualsEvaluatedPdf) {
     auto rnd = [&](float lo, float hi) { return lo + (hi - lo) * rng.next_float(); };
     int spherical = 0;
     for (int k = 0; k < 200; ++k) {
-        const Vec3 a(rnd(-3, 3), rnd(-3, 3), rnd(-3, 3)), b(rnd(-3, 3), rnd(-3, 3), rnd(-3, 3)), c(rnd(-3, 3), rnd(-3, 3), rnd(-3, 3));
+        const Vec3 a(rnd(-3, 3), rnd(-3, 3), rnd(-3, 3)), b(rnd(-3, 3), rnd(-3, 3), rnd(-3, 3)),
+            c(rnd(-3, 3), rnd(-3, 3), rnd(-3, 3));
         const TriangleLight tri = make_triangle(a, b, c);
         const Vec3 e1 = normalize(Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)));
         const Vec3 e2 = normalize(cross(e1, Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1))));
         const AreaLight rect = make_rect(a, e1 * rnd(0.1f, 3), e2 * rnd(0.1f, 3), normalize(cross(e2, e1)));
-        const LightSampleContext ctx{Vec3(rnd(-2, 2), rnd(-2, 2), rnd(-2, 2)), normalize(Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)))};
+        const LightSampleContext ctx{Vec3(rnd(-2, 2), rnd(-2, 2), rnd(-2, 2)),
+                                     normalize(Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)))};
         spherical += tri.uses_spherical_sampling(ctx.p);
         for (int i = 0; i < 50; ++i) {
             const Vec2 u{rng.next_float(), rng.next_float()};
@@ -431,8 +442,8 @@ TEST(LightSamplingPdf, SampledPdfEqualsEvaluatedPdf) {
 
 TEST(LightSamplingPdf, DegenerateConfigurationsStayFinite) {
     const float one_minus = k_one_minus_epsilon;
-    const std::vector<Vec2> us = {{0, 0}, {0, one_minus}, {one_minus, 0}, {one_minus, one_minus}, {0.5f, 0.5f},
-                                  {1e-7f, 0.5f}, {0.5f, 1e-7f}, {0.25f, 0.75f}};
+    const std::vector<Vec2> us = {{0, 0},       {0, one_minus}, {one_minus, 0}, {one_minus, one_minus},
+                                  {0.5f, 0.5f}, {1e-7f, 0.5f},  {0.5f, 1e-7f},  {0.25f, 0.75f}};
     std::vector<std::pair<std::string, Light>> lights;
     // Tiny (1e-6) triangle, near-hemisphere triangles either side of 6.22 sr, a sliver.
     lights.push_back({"tiny", make_triangle(Vec3(0, 0, 1), Vec3(1e-6f, 0, 1), Vec3(0, 1e-6f, 1))});
@@ -491,7 +502,8 @@ TEST(LightSamplingPdf, LightSetUsesItsMode) {
     const LightSample s = set.sample_li(0, ctx, {0.3f, 0.6f});
     ASSERT_TRUE(s.valid());
     EXPECT_EQ(set.pdf_li(0, ctx, s.wi, s.dist), s.pdf);
-    EXPECT_FLOAT_EQ(s.pdf, float(1.0 / spherical_triangle_solid_angle(ctx.p, Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1))));
+    EXPECT_FLOAT_EQ(s.pdf,
+                    float(1.0 / spherical_triangle_solid_angle(ctx.p, Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1))));
     set.set_pdf_mode(parse_light_pdf_mode("AREA"));
     const LightSample a = set.sample_li(0, ctx, {0.3f, 0.6f});
     EXPECT_NEAR(set.pdf_li(0, ctx, a.wi, a.dist), a.pdf, 1e-5f * a.pdf);

@@ -62,11 +62,13 @@ LightSet mixed_lights() {
     for (int i = 0; i < 5; ++i) {
         const Vec3 n = normalize(Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)));
         const Frame f(n);
-        set.add(rect_light(Vec3(rnd(-5, 5), rnd(-5, 5), rnd(-5, 5)), f.s * rnd(0.2f, 2.f), f.t * rnd(0.2f, 2.f), n, rnd(0.5f, 5.f)));
+        set.add(rect_light(Vec3(rnd(-5, 5), rnd(-5, 5), rnd(-5, 5)), f.s * rnd(0.2f, 2.f), f.t * rnd(0.2f, 2.f), n,
+                           rnd(0.5f, 5.f)));
     }
     for (int i = 0; i < 12; ++i) {
         const Vec3 c(rnd(-5, 5), rnd(-5, 5), rnd(-5, 5));
-        set.add(tri_light(c, c + Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)), c + Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)), rnd(0.5f, 5.f)));
+        set.add(tri_light(c, c + Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)), c + Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)),
+                          rnd(0.5f, 5.f)));
     }
     SunLight sun;
     sun.to_sun = normalize(Vec3(0.2f, 0.3f, 1.f));
@@ -84,9 +86,10 @@ std::vector<LightSampleContext> shading_points() {
     std::vector<LightSampleContext> out;
     Pcg32 rng(71, 2);
     auto rnd = [&](float lo, float hi) { return lo + (hi - lo) * rng.next_float(); };
-    for (int i = 0; i < 6; ++i) out.push_back({Vec3(rnd(-6, 6), rnd(-6, 6), rnd(-6, 6)), normalize(Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)))});
-    out.push_back({Vec3(12, -15, 9), Vec3(0, 0, 1)});  // far away
-    out.push_back({Vec3(0.5f, 0.5f, 0.5f), Vec3(0.f)}); // in a medium: no normal
+    for (int i = 0; i < 6; ++i)
+        out.push_back({Vec3(rnd(-6, 6), rnd(-6, 6), rnd(-6, 6)), normalize(Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)))});
+    out.push_back({Vec3(12, -15, 9), Vec3(0, 0, 1)});    // far away
+    out.push_back({Vec3(0.5f, 0.5f, 0.5f), Vec3(0.f)});  // in a medium: no normal
     return out;
 }
 
@@ -214,7 +217,7 @@ TEST(LightSelection, AllEstimatesEveryLightOnce) {
 
 TEST(LightSelection, AreaUsesAreaAndAStandInForPointLights) {
     LightSet set;
-    set.add(tri_light(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 1.f));  // A = 0.5
+    set.add(tri_light(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 1.f));                       // A = 0.5
     set.add(rect_light(Vec3(0, 0, 3), Vec3(2, 0, 0), Vec3(0, 0.75f, 0), Vec3(0, 0, -1), 1.f));  // A = 1.5
     PointLight p;
     p.position = Vec3(1, 1, 1);
@@ -237,7 +240,8 @@ TEST(LightSelectionTree, TenThousandTrianglesGiveAValidPointDependentPmf) {
     for (int i = 0; i < 10000; ++i) {
         const Vec3 c(rnd(-50, 50), rnd(-50, 50), rnd(-50, 50));
         const float s = rnd(0.05f, 0.5f);
-        set.add(tri_light(c, c + Vec3(rnd(-s, s), rnd(-s, s), rnd(-s, s)), c + Vec3(rnd(-s, s), rnd(-s, s), rnd(-s, s)), rnd(0.5f, 2.f)));
+        set.add(tri_light(c, c + Vec3(rnd(-s, s), rnd(-s, s), rnd(-s, s)), c + Vec3(rnd(-s, s), rnd(-s, s), rnd(-s, s)),
+                          rnd(0.5f, 2.f)));
     }
     set.finalize(100.f);
     const LightSampler tree = make_light_sampler("TREE", set);
@@ -246,7 +250,8 @@ TEST(LightSelectionTree, TenThousandTrianglesGiveAValidPointDependentPmf) {
     std::printf("tree: %zu nodes, depth %d\n", tree.tree()->nodes().size(), tree.tree()->depth());
     EXPECT_LE(tree.tree()->depth(), 64);
     for (int q = 0; q < 5; ++q) {
-        const LightSampleContext ctx{Vec3(rnd(-40, 40), rnd(-40, 40), rnd(-40, 40)), normalize(Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)))};
+        const LightSampleContext ctx{Vec3(rnd(-40, 40), rnd(-40, 40), rnd(-40, 40)),
+                                     normalize(Vec3(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)))};
         double sum = 0, near_tree = 0, near_power = 0;
         int zero = 0;
         for (uint32_t i = 0; i < set.size(); ++i) {

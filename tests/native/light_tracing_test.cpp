@@ -111,7 +111,8 @@ TEST(LightTracing, ABorderRendersTheSamePixelsAsTheFullFrame) {
     crop.set("crop_y0", int64_t(4));
     crop.set("crop_x1", int64_t(18));
     crop.set("crop_y1", int64_t(12));
-    std::vector<RenderResult> a = render_seeds(diffuse_room(), full, k_seeds), b = render_seeds(diffuse_room(), crop, k_seeds);
+    std::vector<RenderResult> a = render_seeds(diffuse_room(), full, k_seeds),
+                              b = render_seeds(diffuse_room(), crop, k_seeds);
     // The full frame's pixels inside the border, as renders of the border's size.
     for (RenderResult& r : a) {
         RenderResult c;

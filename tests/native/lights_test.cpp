@@ -6,9 +6,9 @@
 
 #include "core/math.h"
 #include "core/rng.h"
+#include "input/scene_arrays.h"
 #include "lights/light.h"
 #include "lights/light_bounds.h"
-#include "input/scene_arrays.h"
 
 namespace candela {
 namespace {
@@ -22,9 +22,15 @@ SceneArrays light_arrays(uint32_t type, const std::vector<float>& row) {
 
 std::vector<float> row(Color strength, Vec3 pos, Vec3 dir) {
     std::vector<float> r(light_columns().size(), 0.f);
-    r[0] = strength.x; r[1] = strength.y; r[2] = strength.z;
-    r[3] = pos.x; r[4] = pos.y; r[5] = pos.z;
-    r[6] = dir.x; r[7] = dir.y; r[8] = dir.z;
+    r[0] = strength.x;
+    r[1] = strength.y;
+    r[2] = strength.z;
+    r[3] = pos.x;
+    r[4] = pos.y;
+    r[5] = pos.z;
+    r[6] = dir.x;
+    r[7] = dir.y;
+    r[8] = dir.z;
     return r;
 }
 
@@ -45,7 +51,8 @@ std::pair<double, double> irradiance(const Light& light, const LightSampleContex
 
 TEST(BlenderLights, PointLightIntensityIsPowerOverFourPi) {
     // Cycles table: point 1000 W two metres above a white plane: Lo = P/(4π)·cosθ/r²/π.
-    const auto lights = load_blender_lights(light_arrays(0, row(Color(1000.f), Vec3(0, 0, 2), Vec3(0, 0, -1))), Vec3(0.f));
+    const auto lights =
+        load_blender_lights(light_arrays(0, row(Color(1000.f), Vec3(0, 0, 2), Vec3(0, 0, -1))), Vec3(0.f));
     ASSERT_EQ(lights.size(), 1u);
     const LightSampleContext ctx{Vec3(1.f, 0.f, 0.f), Vec3(0, 0, 1)};
     const auto [E, se] = irradiance(lights[0], ctx, 16);
@@ -86,9 +93,9 @@ TEST(BlenderLights, SpotWithRadiusEvaluatesTheConeFromTheSampledPoint) {
     // (radius a, facing the point) of L·att(w)·cosθ_r·cosθ_l/d², L = I/(πa²), done here on a fine polar grid.
     // Evaluating the cone from the centre instead gives exactly 0 at this point, so the test can fail.
     std::vector<float> r = row(Color(1000.f), Vec3(0, 0, 2), Vec3(0, 0, -1));
-    r[15] = 0.3f;                  // radius
-    r[16] = 60.f * k_pi / 180.f;   // spot_size: the cone's edge meets the plane at 2·tan 30° = 1.155 m
-    r[17] = 0.f;                   // blend
+    r[15] = 0.3f;                 // radius
+    r[16] = 60.f * k_pi / 180.f;  // spot_size: the cone's edge meets the plane at 2·tan 30° = 1.155 m
+    r[17] = 0.f;                  // blend
     const auto lights = load_blender_lights(light_arrays(1, r), Vec3(0.f));
     const auto& spot = std::get<PointLight>(lights[0]);
     const LightSampleContext ctx{Vec3(1.2f, 0.f, 0.f), Vec3(0, 0, 1)};
@@ -102,7 +109,8 @@ TEST(BlenderLights, SpotWithRadiusEvaluatesTheConeFromTheSampledPoint) {
         const double rho = a * (i + 0.5) / nr;
         for (int j = 0; j < nphi; ++j) {
             const double phi = 2 * M_PI * (j + 0.5) / nphi;
-            const Vec3 q = spot.position + (frame.s * float(rho * std::cos(phi)) + frame.t * float(rho * std::sin(phi)));
+            const Vec3 q =
+                spot.position + (frame.s * float(rho * std::cos(phi)) + frame.t * float(rho * std::sin(phi)));
             Vec3 w = ctx.p - q;  // light point → shading point
             const double d2 = length_squared(w);
             w = w / float(std::sqrt(d2));
@@ -113,8 +121,8 @@ TEST(BlenderLights, SpotWithRadiusEvaluatesTheConeFromTheSampledPoint) {
     }
     const auto [E, se] = irradiance(lights[0], ctx, 400000);
     std::printf("spot with radius outside the centre's cone: E = %.6f ± %.6f, exact %.6f\n", E, se, exact);
-    EXPECT_GT(exact, 20 * se);               // clearly lit: the centre-only evaluation (0) would fail
-    EXPECT_NEAR(E, exact, 5 * se + 1e-4 * exact);   // 5σ, plus the grid's quadrature error
+    EXPECT_GT(exact, 20 * se);                     // clearly lit: the centre-only evaluation (0) would fail
+    EXPECT_NEAR(E, exact, 5 * se + 1e-4 * exact);  // 5σ, plus the grid's quadrature error
     // The WARD selection's bound must stay an upper bound of what the light delivers there.
     EXPECT_GE(light_irradiance_bound(lights[0], ctx), E);
 }
@@ -137,7 +145,8 @@ TEST(BlenderLights, AreaLightMatchesTheViewFactor) {
     const auto lights = load_blender_lights(light_arrays(3, r), Vec3(0.f));
     const double X = 0.25, Y = 0.25;
     const double Fc = (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
-                       Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) / (2 * M_PI);
+                       Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
+                      (2 * M_PI);
     const double expected_E = M_PI * 25.0 * 4.0 * Fc;
     const auto [E, se] = irradiance(lights[0], {Vec3(0.f), Vec3(0, 0, 1)});
     EXPECT_NEAR(E, expected_E, 5 * se);

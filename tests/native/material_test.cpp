@@ -36,10 +36,21 @@ TEST(MaterialLoading, WithoutClosuresTheBaseColourIsALambert) {
 TEST(MaterialLoading, ClosuresReplaceTheBaseColourWithTheirWeights) {
     MeshBuilder b = one_quad();
     // Mix Shader at fac 0.25 of Diffuse (white) and Glossy: the add-on sends weights 0.75 and 0.25.
-    b.add_closure(0, "DIFFUSE", {{"weight_r", 0.75f}, {"weight_g", 0.75f}, {"weight_b", 0.75f},
-                                 {"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}});
-    b.add_closure(0, "GLOSSY", {{"weight_r", 0.25f}, {"weight_g", 0.25f}, {"weight_b", 0.25f},
-                                {"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}, {"roughness", 0.5f}});
+    b.add_closure(0, "DIFFUSE",
+                  {{"weight_r", 0.75f},
+                   {"weight_g", 0.75f},
+                   {"weight_b", 0.75f},
+                   {"color_r", 1.f},
+                   {"color_g", 1.f},
+                   {"color_b", 1.f}});
+    b.add_closure(0, "GLOSSY",
+                  {{"weight_r", 0.25f},
+                   {"weight_g", 0.25f},
+                   {"weight_b", 0.25f},
+                   {"color_r", 1.f},
+                   {"color_g", 1.f},
+                   {"color_b", 1.f},
+                   {"roughness", 0.5f}});
     const auto m = load(b);
     ASSERT_EQ(m[0].bsdf().size(), 2);
     EXPECT_FLOAT_EQ(m[0].bsdf()[0].weight.x, 0.75f);

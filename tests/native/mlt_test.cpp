@@ -44,10 +44,10 @@ SceneArrays box_scene(bool door) {
     };
     // (x, y, 0) of a quad ↦ world by these rows.
     const float zc = door ? -2.5f : -2.f, half = door ? 1.5f : 1.f;  // the rooms' z centre and half depth
-    quad({1, 0, 0, 0, 0, 0, 1, -1, 0, -1, 0, zc, 0, 0, 0, 1}, -1, 1, -half, half, white);   // floor
-    quad({1, 0, 0, 0, 0, 0, 1, 1, 0, -1, 0, zc, 0, 0, 0, 1}, -1, 1, -half, half, white);    // ceiling
-    quad({0, 0, 1, -1, 0, 1, 0, 0, -1, 0, 0, zc, 0, 0, 0, 1}, -half, half, -1, 1, red);     // left
-    quad({0, 0, 1, 1, 0, 1, 0, 0, -1, 0, 0, zc, 0, 0, 0, 1}, -half, half, -1, 1, green);    // right
+    quad({1, 0, 0, 0, 0, 0, 1, -1, 0, -1, 0, zc, 0, 0, 0, 1}, -1, 1, -half, half, white);  // floor
+    quad({1, 0, 0, 0, 0, 0, 1, 1, 0, -1, 0, zc, 0, 0, 0, 1}, -1, 1, -half, half, white);   // ceiling
+    quad({0, 0, 1, -1, 0, 1, 0, 0, -1, 0, 0, zc, 0, 0, 0, 1}, -half, half, -1, 1, red);    // left
+    quad({0, 0, 1, 1, 0, 1, 0, 0, -1, 0, 0, zc, 0, 0, 0, 1}, -half, half, -1, 1, green);   // right
     const uint32_t box = b.add_box(Vec3(0.25f, 0.4f, 0.25f), white);
     const std::vector<float> tall = {0.8f, 0, 0.6f, -0.4f, 0, 1, 0, -0.6f, -0.6f, 0, 0.8f, -2.4f, 0, 0, 0, 1};
     b.add_instance(box, tall.data());
@@ -125,7 +125,8 @@ TEST(Mlt, FurnaceImageAndBootstrapBrightnessAreTheClosedForm) {
         p.set("width", int64_t(8));
         p.set("height", int64_t(6));
         const SeedMean image = seed_mean(render_seeds(sphere, p, k_runs));
-        std::printf("%s furnace: image mean %.5f ± %.5f, expected %.5f\n", name, image.mean, image.standard_error, expected);
+        std::printf("%s furnace: image mean %.5f ± %.5f, expected %.5f\n", name, image.mean, image.standard_error,
+                    expected);
         EXPECT_NEAR(image.mean, expected, 5.0 * image.standard_error + 1e-6) << name;
         std::vector<double> bs;
         for (int seed = 1; seed <= k_runs; ++seed) {
@@ -183,35 +184,38 @@ TEST(Mlt, DeterministicForAnyThreadCount) {
         for (int threads : {1, 2, 3}) {
             p.set("threads", int64_t(threads));
             const RenderResult r = render(box, p);
-            if (first.empty()) first = r.rgba;
-            else EXPECT_EQ(r.rgba, first) << name << ", " << threads << " threads";
+            if (first.empty())
+                first = r.rgba;
+            else
+                EXPECT_EQ(r.rgba, first) << name << ", " << threads << " threads";
         }
     }
 }
 
 TEST(Mlt, CancelStopsTheRenderWithAFiniteImage) {
     for (const char* name : {"MLT", "MMLT"})
-    for (int cancel_ms : {1, 1500}) {
-        Params p = base_params(name, 1000000);
-        p.set("width", int64_t(64));
-        p.set("height", int64_t(48));
-        Session s(box_scene(false), p);
-        s.start();
-        // Once during the bootstrap (a stage of the render), once during the chains' passes.
-        std::this_thread::sleep_for(std::chrono::milliseconds(cancel_ms));
-        s.cancel();
-        s.join();
-        ASSERT_FALSE(s.error()) << *s.error();
-        EXPECT_EQ(s.progress().stop_reason, StopReason::Cancelled) << name << ", cancel after " << cancel_ms << " ms";
-        int channels = 0;
-        for (float v : s.get_pass("Combined", &channels)) ASSERT_TRUE(std::isfinite(v)) << name;
-    }
+        for (int cancel_ms : {1, 1500}) {
+            Params p = base_params(name, 1000000);
+            p.set("width", int64_t(64));
+            p.set("height", int64_t(48));
+            Session s(box_scene(false), p);
+            s.start();
+            // Once during the bootstrap (a stage of the render), once during the chains' passes.
+            std::this_thread::sleep_for(std::chrono::milliseconds(cancel_ms));
+            s.cancel();
+            s.join();
+            ASSERT_FALSE(s.error()) << *s.error();
+            EXPECT_EQ(s.progress().stop_reason, StopReason::Cancelled)
+                << name << ", cancel after " << cancel_ms << " ms";
+            int channels = 0;
+            for (float v : s.get_pass("Combined", &channels)) ASSERT_TRUE(std::isfinite(v)) << name;
+        }
 }
 
 TEST(Mlt, BadSettingsAreRejectedByName) {
     const std::vector<std::pair<std::string, Params::Value>> bad = {
-        {"mlt_large_step", 1.5}, {"mlt_sigma", 0.0}, {"mlt_bootstrap", int64_t(0)}, {"mlt_chains", int64_t(3)},
-        {"mlt_chains", int64_t(0)}, {"max_bounces", int64_t(-1)}};
+        {"mlt_large_step", 1.5},    {"mlt_sigma", 0.0},         {"mlt_bootstrap", int64_t(0)},
+        {"mlt_chains", int64_t(3)}, {"mlt_chains", int64_t(0)}, {"max_bounces", int64_t(-1)}};
     for (const char* name : {"MLT", "MMLT"}) {
         for (const auto& [key, value] : bad) {
             Params p = base_params(name, 4);

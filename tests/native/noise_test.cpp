@@ -45,7 +45,8 @@ SceneArrays room() {
     const uint32_t block = b.add_material(Color(0.3f, 0.5f, 0.7f), Color(0.f));
     b.add_instance(b.add_sphere(2.f, 48, 24, wall));
     b.add_instance(b.add_quad_z(-0.2f, 0.2f, 1.0f, 1.4f, -1.2f, lamp));
-    b.add_instance(b.add_sphere(0.4f, 24, 12, block), std::vector<float>{1, 0, 0, 0.3f, 0, 1, 0, -0.5f, 0, 0, 1, -1.5f, 0, 0, 0, 1}.data());
+    b.add_instance(b.add_sphere(0.4f, 24, 12, block),
+                   std::vector<float>{1, 0, 0, 0.3f, 0, 1, 0, -0.5f, 0, 0, 1, -1.5f, 0, 0, 0, 1}.data());
     b.add_point_light(Vec3(-0.8f, 0.6f, -0.8f), Color(15.f), 0.05f);
     return b.arrays();
 }
@@ -60,10 +61,21 @@ SceneArrays glossy_room() {
     const uint32_t metal = b.add_material(Color(0.5f), Color(0.f));
     b.add_closure(metal, "GLOSSY", {{"color_r", 0.9f}, {"color_g", 0.7f}, {"color_b", 0.5f}, {"roughness", 0.5f}});
     const uint32_t floor = b.add_material(Color(0.5f), Color(0.f));
-    b.add_closure(floor, "DIFFUSE", {{"weight_r", 0.7f}, {"weight_g", 0.7f}, {"weight_b", 0.7f},
-                                     {"color_r", 0.8f}, {"color_g", 0.8f}, {"color_b", 0.8f}});
-    b.add_closure(floor, "GLOSSY", {{"weight_r", 0.3f}, {"weight_g", 0.3f}, {"weight_b", 0.3f},
-                                    {"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}, {"roughness", 0.3f}});
+    b.add_closure(floor, "DIFFUSE",
+                  {{"weight_r", 0.7f},
+                   {"weight_g", 0.7f},
+                   {"weight_b", 0.7f},
+                   {"color_r", 0.8f},
+                   {"color_g", 0.8f},
+                   {"color_b", 0.8f}});
+    b.add_closure(floor, "GLOSSY",
+                  {{"weight_r", 0.3f},
+                   {"weight_g", 0.3f},
+                   {"weight_b", 0.3f},
+                   {"color_r", 1.f},
+                   {"color_g", 1.f},
+                   {"color_b", 1.f},
+                   {"roughness", 0.3f}});
     b.add_instance(b.add_sphere(2.f, 48, 24, wall));
     b.add_instance(b.add_quad_z(-0.8f, 0.8f, 1.0f, 1.6f, -1.6f, lamp));
     // Floor: the z-quad rotated to y = −0.8 (x → x, y → −z, z → y).
@@ -223,28 +235,30 @@ Agreement agreement(const SceneArrays& arrays, const Reference& ref, const std::
 
 /// The three checks of the header comment, for every sampler at 16 and 64 samples per pixel. For the samplers in
 /// `moments_fail`, the independent-sample estimate must fail them at 64 samples (the power check).
-void expect_honest(const char* scene, const SceneArrays& arrays, const std::vector<std::string>& samplers,
-                   int renders, const std::vector<std::string>& moments_fail = {},
+void expect_honest(const char* scene, const SceneArrays& arrays, const std::vector<std::string>& samplers, int renders,
+                   const std::vector<std::string>& moments_fail = {},
                    const std::vector<std::string>& integrators = {"PATH"}) {
     const Reference ref = make_reference(arrays);
     for (const std::string& integrator : integrators)
-    for (const std::string& sampler : samplers)
-        for (int spp : {16, 64}) {
-            const Agreement a = agreement(arrays, ref, sampler, spp, renders, "MIS", integrator);
-            const auto [rho, se] = a.ratio();
-            const auto [rho_m, se_m] = a.ratio(true);
-            std::printf("%s %s %s %d spp: measured relative RMSE %.4f; estimate / measured %.3f ± %.3f "
-                        "(independent-sample estimate: %.3f ± %.3f)\n",
-                        scene, integrator.c_str(), sampler.c_str(), spp, a.measured(), rho, se, rho_m, se_m);
-            const std::string what = std::string(scene) + " " + integrator + " " + sampler + " " + std::to_string(spp) + " spp";
-            EXPECT_LE(se, 1.0 / 16.0) << what << ": too few pixels or renders to resolve 25 %";
-            EXPECT_NEAR(rho, 1.0, 4.0 * se) << what << ": the estimate is biased";
-            EXPECT_NEAR(rho, 1.0, 0.25) << what << ": the estimate is not within 25 % of the measured error";
-            if (spp == 64 && std::count(moments_fail.begin(), moments_fail.end(), sampler)) {
-                EXPECT_GT(rho_m - 1.0, 4.0 * se_m) << what << ": the power check";
-                EXPECT_GT(rho_m, 1.25) << what << ": the power check";
+        for (const std::string& sampler : samplers)
+            for (int spp : {16, 64}) {
+                const Agreement a = agreement(arrays, ref, sampler, spp, renders, "MIS", integrator);
+                const auto [rho, se] = a.ratio();
+                const auto [rho_m, se_m] = a.ratio(true);
+                std::printf(
+                    "%s %s %s %d spp: measured relative RMSE %.4f; estimate / measured %.3f ± %.3f "
+                    "(independent-sample estimate: %.3f ± %.3f)\n",
+                    scene, integrator.c_str(), sampler.c_str(), spp, a.measured(), rho, se, rho_m, se_m);
+                const std::string what =
+                    std::string(scene) + " " + integrator + " " + sampler + " " + std::to_string(spp) + " spp";
+                EXPECT_LE(se, 1.0 / 16.0) << what << ": too few pixels or renders to resolve 25 %";
+                EXPECT_NEAR(rho, 1.0, 4.0 * se) << what << ": the estimate is biased";
+                EXPECT_NEAR(rho, 1.0, 0.25) << what << ": the estimate is not within 25 % of the measured error";
+                if (spp == 64 && std::count(moments_fail.begin(), moments_fail.end(), sampler)) {
+                    EXPECT_GT(rho_m - 1.0, 4.0 * se_m) << what << ": the power check";
+                    EXPECT_GT(rho_m, 1.25) << what << ": the power check";
+                }
             }
-        }
 }
 
 const std::vector<std::string> k_samplers = {"RANDOM", "STRATIFIED", "NROOKS", "HALTON", "HAMMERSLEY", "SOBOL"};

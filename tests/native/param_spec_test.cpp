@@ -14,10 +14,10 @@ namespace {
 
 void set_default(Params& p, const ParamSpec& s) {
     switch (s.type) {
-        case ParamType::Bool: p.set(s.key, s.default_value != 0.0); break;
-        case ParamType::Int: p.set(s.key, int64_t(s.default_value)); break;
-        case ParamType::Float: p.set(s.key, s.default_value); break;
-        case ParamType::Enum: p.set(s.key, std::string(s.default_item)); break;
+    case ParamType::Bool: p.set(s.key, s.default_value != 0.0); break;
+    case ParamType::Int: p.set(s.key, int64_t(s.default_value)); break;
+    case ParamType::Float: p.set(s.key, s.default_value); break;
+    case ParamType::Enum: p.set(s.key, std::string(s.default_item)); break;
     }
 }
 
@@ -62,8 +62,10 @@ TEST(ParamSpec, AValueOutsideThePublishedRangeIsRefusedByName) {
             for (double bad : {s.min - 1.0, s.max + 1.0}) {
                 if (s.type == ParamType::Int && (bad < -9e18 || bad > 9e18)) continue;
                 Params p;
-                if (s.type == ParamType::Int) p.set(s.key, int64_t(bad));
-                else p.set(s.key, bad);
+                if (s.type == ParamType::Int)
+                    p.set(s.key, int64_t(bad));
+                else
+                    p.set(s.key, bad);
                 try {
                     e.create(p);
                     ADD_FAILURE() << e.name << " accepted " << s.key << " = " << bad;

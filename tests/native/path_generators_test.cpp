@@ -123,7 +123,8 @@ TEST(PathGenerators, TheMisCombinationHasTheLeastVariance) {
             const double di = mis[i] - single[best][i];
             d += di, d2 += di * di, m += mis[i];
         }
-        const double mean_d = d / double(n), sd = std::sqrt(std::max(0.0, (d2 - double(n) * mean_d * mean_d) / (n - 1.0)));
+        const double mean_d = d / double(n),
+                     sd = std::sqrt(std::max(0.0, (d2 - double(n) * mean_d * mean_d) / (n - 1.0)));
         std::printf("%s + MIS: mean pixel variance %.4g (%.2f× the best single, %s)\n", g, m / double(n),
                     m / double(n) / best_mean, k_generators[best]);
         EXPECT_LE(mean_d, 3.0 * sd / std::sqrt(double(n))) << g << " + MIS against " << k_generators[best];

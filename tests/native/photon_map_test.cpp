@@ -306,8 +306,8 @@ TEST(PhotonAgreement, PhotonAndSppmMatchPathInARoom) {
         const double ph = photon.mean_rgb / path.mean_rgb - 1.0, sd = sppm.mean_rgb / path.mean_rgb - 1.0;
         const double se_ph = std::hypot(path.standard_error, photon.standard_error) / path.mean_rgb;
         const double se_sd = std::hypot(path.standard_error, std::sqrt(8.0) * path.standard_error) / path.mean_rgb;
-        std::printf("%s: PATH %.5f, PHOTON %+.4f (se %.4f), SPPM %+.4f (se %.4f)\n", glass ? "glass room" : "diffuse room",
-                    path.mean_rgb, ph, se_ph, sd, se_sd);
+        std::printf("%s: PATH %.5f, PHOTON %+.4f (se %.4f), SPPM %+.4f (se %.4f)\n",
+                    glass ? "glass room" : "diffuse room", path.mean_rgb, ph, se_ph, sd, se_sd);
         EXPECT_LT(std::fabs(ph), 0.01 + 4.0 * se_ph) << (glass ? "glass" : "diffuse");
         EXPECT_LT(std::fabs(sd), 0.02 + 4.0 * se_sd) << (glass ? "glass" : "diffuse");
     }
@@ -359,9 +359,12 @@ TEST(PhotonCancel, DuringShootingAndTreeBuild) {
         bool seen = false;
         for (int i = 0; i < 200000 && !seen; ++i) {
             const SessionProgress pr = s.progress();
-            if (pr.stage.name == stage) seen = true;
-            else if (pr.work_done > 0 || pr.stop_reason != StopReason::Running) break;
-            else std::this_thread::sleep_for(std::chrono::microseconds(200));
+            if (pr.stage.name == stage)
+                seen = true;
+            else if (pr.work_done > 0 || pr.stop_reason != StopReason::Running)
+                break;
+            else
+                std::this_thread::sleep_for(std::chrono::microseconds(200));
         }
         s.cancel();
         s.join();
@@ -399,4 +402,3 @@ TEST(PhotonSettings, BadSettingsAreRefusedByName) {
 
 }  // namespace
 }  // namespace candela::test
-

@@ -36,8 +36,10 @@ TEST(PrimarySampleSampler, LargeStepsAreUniform) {
         ASSERT_TRUE(u.large_step());
         first.push_back(u.sample_1d(0));
         if (i % 2 == 0) later.push_back(u.sample_2d(40).y);  // a coordinate read every other iteration
-        if (i % 3 == 0) u.accept();
-        else u.reject();
+        if (i % 3 == 0)
+            u.accept();
+        else
+            u.reject();
     }
     EXPECT_LT(ks_uniform(first), 1.95 / std::sqrt(double(first.size())));
     EXPECT_LT(ks_uniform(later), 1.95 / std::sqrt(double(later.size())));
@@ -59,7 +61,8 @@ TEST(PrimarySampleSampler, RejectionRestoresTheStateExactly) {
             EXPECT_TRUE(changed) << it;
             if (it % 2 == 0) {
                 u.reject();
-                for (uint32_t d = 0; d < 12; ++d) ASSERT_EQ(u.value(d), before[d]) << "p_large " << p_large << ", it " << it;
+                for (uint32_t d = 0; d < 12; ++d)
+                    ASSERT_EQ(u.value(d), before[d]) << "p_large " << p_large << ", it " << it;
             } else {
                 u.accept();
             }

@@ -70,7 +70,8 @@ SceneArrays lit_room(unsigned lights, bool specular) {
     if (lights & 64)
         b.add_area_light(Vec3(1.f, 0.3f, -2.9f), Vec3(0.5f, 0.f, 0.f), Vec3(0.f, 0.4f, 0.f), Vec3(0.f, 0.f, 1.f),
                          Color(10.f), false);
-    if (lights & 128) b.add_instance(b.add_triangle(Vec3(-1.f, 1.f, -2.f), Vec3(-0.4f, 1.f, -2.f), Vec3(-0.7f, 1.f, -2.6f), lamp));
+    if (lights & 128)
+        b.add_instance(b.add_triangle(Vec3(-1.f, 1.f, -2.f), Vec3(-0.4f, 1.f, -2.f), Vec3(-0.7f, 1.f, -2.6f), lamp));
     if (lights & 256) b.world_color = {0.3f, 0.35f, 0.4f};
     return b.arrays();
 }
@@ -153,15 +154,18 @@ SceneArrays veach_scene(std::vector<float>* camera) {
         const uint32_t m = b.add_material(Color(0.f), Color(0.f));
         // Cycles' Glossy BSDF: α = roughness²; distribution 1 = Beckmann.
         b.add_closure(m, "GLOSSY",
-                      {{"color_r", 0.3f}, {"color_g", 0.3f}, {"color_b", 0.3f}, {"roughness", std::sqrt(alphas[i])},
+                      {{"color_r", 0.3f},
+                       {"color_g", 0.3f},
+                       {"color_b", 0.3f},
+                       {"roughness", std::sqrt(alphas[i])},
                        {"distribution", 1.f}});
         const auto t = rows(plate_rows[i]);
         b.add_instance(b.add_box(Vec3(1.f), m), t.data());
     }
     const uint32_t backdrop = b.add_material(Color(0.5f), Color(0.f));
     const auto floor = rows({9.9f, 0, 0, 4.9f, 0, -4.32743e-7f, 9.9f, 0, 0, -23.76f, -1.03858e-6f, 0});
-    const auto wall = rows({-4.32743e-7f, -4.32743e-7f, 9.9f, -5, -9.9f, 1.89158e-14f, -4.32743e-7f, 9.9f, 0, -23.76f,
-                            -1.03858e-6f, 0});
+    const auto wall = rows(
+        {-4.32743e-7f, -4.32743e-7f, 9.9f, -5, -9.9f, 1.89158e-14f, -4.32743e-7f, 9.9f, 0, -23.76f, -1.03858e-6f, 0});
     b.add_instance(b.add_quad_z(-1.f, 1.f, -1.f, 1.f, 0.f, backdrop), floor.data());
     b.add_instance(b.add_quad_z(-1.f, 1.f, -1.f, 1.f, 0.f, backdrop), wall.data());
     const float radii[4] = {0.9f, 0.3f, 0.1f, 0.03333f}, z[4] = {-3.75f, -1.25f, 1.25f, 3.75f};
@@ -256,8 +260,8 @@ double facing_plates_expected(int order) {
     for (size_t i = 0; i < px.size(); ++i)
         for (size_t j = 0; j < py.size(); ++j)
             irradiance[i * py.size() + j] =
-                k_plates_radiance * polygon_irradiance(emitter, Vec3(float(px[i]), float(py[j]), k_plate_height),
-                                                       Vec3(0.f, 0.f, -1.f));
+                k_plates_radiance *
+                polygon_irradiance(emitter, Vec3(float(px[i]), float(py[j]), k_plate_height), Vec3(0.f, 0.f, -1.f));
     const double h = k_plate_height;
     double sum = 0.0, area = 0.0;
     for (size_t a = 0; a < vx.size(); ++a)

@@ -32,7 +32,7 @@ struct RayMoments {
 RayMoments expected_rays(int rr_start_bounce) {
     double p = 1.0, beta = 1.0, mean = 0.0, second = 0.0;
     for (int v = 0; v <= k_max_bounces + 1; ++v) {
-        mean += p;                                   // P(n >= v + 1) = P_v
+        mean += p;  // P(n >= v + 1) = P_v
         second += (2.0 * (v + 1) - 1.0) * p;
         if (v > k_max_bounces) break;
         const double q = v + 1 >= rr_start_bounce ? std::fmin(1.0, std::sqrt(beta)) : 1.0;

@@ -109,7 +109,8 @@ double disk(double x, double y) {
 double gaussian(double x, double y) {
     const double s = 0.25;
     static const double z = s * std::sqrt(2.0 * 3.14159265358979323846) * std::erf(0.5 / (s * std::sqrt(2.0)));
-    const double gx = std::exp(-(x - 0.5) * (x - 0.5) / (2 * s * s)), gy = std::exp(-(y - 0.5) * (y - 0.5) / (2 * s * s));
+    const double gx = std::exp(-(x - 0.5) * (x - 0.5) / (2 * s * s)),
+                 gy = std::exp(-(y - 0.5) * (y - 0.5) / (2 * s * s));
     return gx * gy / (z * z);
 }
 

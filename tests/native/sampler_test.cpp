@@ -22,7 +22,8 @@ const std::vector<std::string> k_qmc = {"STRATIFIED", "NROOKS", "HALTON", "HAMME
 // ---- exact values ----
 
 TEST(LowDiscrepancy, RadicalInverseTables) {
-    const double b2[16] = {0, .5, .25, .75, .125, .625, .375, .875, .0625, .5625, .3125, .8125, .1875, .6875, .4375, .9375};
+    const double b2[16] = {0,     .5,    .25,   .75,   .125,  .625,  .375,  .875,
+                           .0625, .5625, .3125, .8125, .1875, .6875, .4375, .9375};
     for (int i = 0; i < 16; ++i) EXPECT_EQ(radical_inverse(0, uint64_t(i)), b2[i]) << i;
     const double b3[9] = {0, 1 / 3., 2 / 3., 1 / 9., 4 / 9., 7 / 9., 2 / 9., 5 / 9., 8 / 9.};
     for (int i = 0; i < 9; ++i) EXPECT_NEAR(radical_inverse(1, uint64_t(i)), b3[i], 1e-15) << i;
@@ -61,8 +62,11 @@ TEST(LowDiscrepancy, UnscrambledHaltonTable) {
 }
 
 TEST(LowDiscrepancy, UnscrambledHammersleyTable) {
-    const double t[5][4] = {{0, 0, 0, 0}, {0.2, 0.5, 0.333333333333333, 0.2}, {0.4, 0.25, 0.666666666666667, 0.4},
-                            {0.6, 0.75, 0.111111111111111, 0.6}, {0.8, 0.125, 0.444444444444444, 0.8}};
+    const double t[5][4] = {{0, 0, 0, 0},
+                            {0.2, 0.5, 0.333333333333333, 0.2},
+                            {0.4, 0.25, 0.666666666666667, 0.4},
+                            {0.6, 0.75, 0.111111111111111, 0.6},
+                            {0.8, 0.125, 0.444444444444444, 0.8}};
     for (int i = 0; i < 5; ++i)
         for (int d = 0; d < 4; ++d) EXPECT_NEAR(hammersley(d, uint64_t(i), 5), t[i][d], 1e-7) << i << "," << d;
 }
@@ -393,13 +397,16 @@ TEST(SamplerDecorrelation, DimensionsDoNotCorrelate) {
     // Independent coordinates: r ~ N(0, 1/√count); 5σ bound.
     const int n = 64, pixels = 64;
     const double bound = 5.0 / std::sqrt(double(n * pixels));
-    const std::pair<Dim, Dim> pairs[] = {{Dim::LightSelect, Dim::Roulette}, {Dim::Light, Dim::Bsdf}, {Dim::Filter, Dim::Light},
+    const std::pair<Dim, Dim> pairs[] = {{Dim::LightSelect, Dim::Roulette},
+                                         {Dim::Light, Dim::Bsdf},
+                                         {Dim::Filter, Dim::Light},
                                          {Dim::Filter, Dim::Bsdf}};
     for (const auto& name : k_all) {
         for (auto [a, b] : pairs) {
             for (int bounce : {0, 3, 60}) {  // bounce 60: past the radical-inverse dimensions
                 const double r = correlation(name, n, dimension_index(a, bounce), dimension_index(b, bounce), pixels);
-                EXPECT_LT(std::fabs(r), bound) << name << " dims " << dimension_index(a, bounce) << "," << dimension_index(b, bounce);
+                EXPECT_LT(std::fabs(r), bound)
+                    << name << " dims " << dimension_index(a, bounce) << "," << dimension_index(b, bounce);
             }
         }
         // Same named dimension at consecutive bounces.
@@ -416,8 +423,8 @@ namespace candela {
 namespace {
 /// Exposes the per-dimension seeds so the fast Sobol evaluation can be checked against its definition.
 struct SobolProbe : SobolSampler {
-    using SobolSampler::SobolSampler;
     using SobolSampler::seeds;
+    using SobolSampler::SobolSampler;
 };
 }  // namespace
 
@@ -505,7 +512,8 @@ TEST(SobolSampler, CachedBounceSeedsEqualTheUncachedBatch) {
             const float got[7] = {a.light_select, a.light.x, a.light.y, a.bsdf.x, a.bsdf.y, a.roulette, a.lobe};
             const float want[7] = {b.light_select, b.light.x, b.light.y, b.bsdf.x, b.bsdf.y, b.roulette, b.lobe};
             for (int k = 0; k < 7; ++k)
-                ASSERT_EQ(got[k], want[k]) << "pixel " << v.px << "," << v.py << " index " << v.index << " bounce " << bounce << " value " << k;
+                ASSERT_EQ(got[k], want[k]) << "pixel " << v.px << "," << v.py << " index " << v.index << " bounce "
+                                           << bounce << " value " << k;
             ASSERT_EQ(a.bsdf.y, get_2d(fresh, Dim::Bsdf, bounce).y);
             ASSERT_EQ(a.lobe, get_1d(fresh, Dim::BsdfLobe, bounce));
         }

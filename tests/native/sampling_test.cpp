@@ -64,13 +64,15 @@ void expect_integral(Sample sample, Pdf pdf, G g, double expected) {
 
 TEST(Warp, CosineHemisphereIntegratesCosine) {
     // ∫ cos θ dω over the hemisphere = π; ∫ cos² θ dω = 2π/3 (a non-trivial moment).
-    expect_integral(sample_cosine_hemisphere, [](Vec3 w) { return cosine_hemisphere_pdf(w.z); },
-                    [](Vec3 w) { return double(w.z) * w.z; }, 2.0 * M_PI / 3.0);
+    expect_integral(
+        sample_cosine_hemisphere, [](Vec3 w) { return cosine_hemisphere_pdf(w.z); },
+        [](Vec3 w) { return double(w.z) * w.z; }, 2.0 * M_PI / 3.0);
 }
 
 TEST(Warp, UniformSphereIntegratesSolidAngle) {
-    expect_integral(sample_uniform_sphere, [](Vec3) { return uniform_sphere_pdf(); },
-                    [](Vec3 w) { return w.z > 0 ? double(w.z) : 0.0; }, M_PI);
+    expect_integral(
+        sample_uniform_sphere, [](Vec3) { return uniform_sphere_pdf(); },
+        [](Vec3 w) { return w.z > 0 ? double(w.z) : 0.0; }, M_PI);
 }
 
 TEST(Warp, UniformConeCoversItsSolidAngle) {

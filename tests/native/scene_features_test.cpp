@@ -43,7 +43,7 @@ TEST(SceneFeatures, DiffuseBoxUnderALargePanel) {
     EXPECT_EQ(f.delta_lights, 0);
     EXPECT_EQ(f.zero_power_lights, 0);
     EXPECT_EQ(f.world, WorldKind::None);
-    EXPECT_NEAR(f.emissive_area, 0.25, 1e-5);  // 0.5 × 0.5
+    EXPECT_NEAR(f.emissive_area, 0.25, 1e-5);                // 0.5 × 0.5
     EXPECT_NEAR(f.diffuse_area, f.total_area - 0.25, 1e-6);  // everything but the panel (a pure emitter: no lobe)
     EXPECT_EQ(f.specular_area, 0.0);
     EXPECT_EQ(f.glossy_area, 0.0);
@@ -119,8 +119,9 @@ TEST(SceneFeatures, ConstantAndTexturedWorlds) {
     ProgramBuilder pb;
     const uint32_t tex = pb.image(8, 4, std::vector<Color>(32, Color(0.5f)));
     const uint32_t dir = pb.op(ShaderOpCode::Coord, 0, 0, 0, {uint32_t(CoordKind::Generated)});
-    const uint32_t img = pb.op(ShaderOpCode::Image, dir, 0, 0,
-                               {tex, uint32_t(TexInterpolation::Linear), 0, uint32_t(ImageProjection::Equirectangular)});
+    const uint32_t img =
+        pb.op(ShaderOpCode::Image, dir, 0, 0,
+              {tex, uint32_t(TexInterpolation::Linear), 0, uint32_t(ImageProjection::Equirectangular)});
     pb.bind(InputTarget::World, 0, 0, 3, pb.end_program(), img);
     pb.add_to(a);
     const SceneFeatures e = features_of(a);

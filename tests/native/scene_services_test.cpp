@@ -14,7 +14,8 @@ TEST(SceneServices, TheBoundingSphereEnclosesGeometryAreaLightsAndPointLights) {
     const uint32_t m = b.add_material(Color(0.5f), Color(0.f));
     b.add_instance(b.add_quad_z(-1.f, 3.f, -2.f, 2.f, -5.f, m));
     b.add_point_light(Vec3(-4.f, 0.f, -5.f), Color(1.f));
-    b.add_area_light(Vec3(0.f, 6.f, -5.f), Vec3(2.f, 0.f, 0.f), Vec3(0.f, 0.f, 2.f), Vec3(0.f, -1.f, 0.f), Color(1.f), false);
+    b.add_area_light(Vec3(0.f, 6.f, -5.f), Vec3(2.f, 0.f, 0.f), Vec3(0.f, 0.f, 2.f), Vec3(0.f, -1.f, 0.f), Color(1.f),
+                     false);
     const SceneArrays a = b.arrays();
     const Scene scene(a, basic_params(8, 8, 1, 1), nullptr);
     const SceneSphere& s = scene.bounds();

@@ -18,7 +18,8 @@ TEST(Scene, InstancesShareOneMesh) {
     const uint32_t m = b.add_material(Color(0.5f), Color(0.f));
     const uint32_t sphere = b.add_sphere(0.1f, 16, 8, m);
     for (int i = 0; i < 1000; ++i) {
-        const float xf[16] = {1, 0, 0, float(i % 10), 0, 1, 0, float(i / 10 % 10), 0, 0, 1, -5.f - float(i / 100), 0, 0, 0, 1};
+        const float xf[16] = {1, 0, 0, float(i % 10),         0, 1, 0, float(i / 10 % 10),
+                              0, 0, 1, -5.f - float(i / 100), 0, 0, 0, 1};
         b.add_instance(sphere, xf);
     }
     SceneArrays a = b.arrays();
@@ -126,14 +127,14 @@ namespace {
 TEST(Scene, PacketHitsMatchSingleRayHits) {
     MeshBuilder b;
     const uint32_t m = b.add_material(Color(0.5f), Color(0.f));
-    b.add_instance(b.add_quad_z(-1, 1, -1, 1, -3, m));                   // flattened
+    b.add_instance(b.add_quad_z(-1, 1, -1, 1, -3, m));  // flattened
     const uint32_t box = b.add_box(Vec3(0.2f, 0.2f, 0.2f), m);
-    for (int i = 0; i < 3; ++i) {                                         // shared: instanced
+    for (int i = 0; i < 3; ++i) {  // shared: instanced
         const float xf[16] = {1, 0, 0, -0.5f + 0.5f * i, 0, 1, 0, 0.1f * i, 0, 0, 1, -2.f, 0, 0, 0, 1};
         b.add_instance(box, xf);
     }
     const float sphere_xf[16] = {1, 0, 0, 0.6f, 0, 1, 0, -0.6f, 0, 0, 1, -2.5f, 0, 0, 0, 1};
-    b.add_instance(b.add_sphere(0.3f, 24, 12, m), sphere_xf);            // flattened, smooth-free facets
+    b.add_instance(b.add_sphere(0.3f, 24, 12, m), sphere_xf);  // flattened, smooth-free facets
     const Scene scene(b.arrays(), basic_params(16, 16, 1, 1), nullptr);
     Pcg32 rng(5, 9);
     int compared = 0, misses = 0;

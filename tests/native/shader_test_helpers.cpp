@@ -57,7 +57,8 @@ void ProgramBuilder::add_to(SceneArrays& a) const {
     if (!ramps.empty()) a.set("ramps", ElemType::F32, {ramps.size() / (4 * k_ramp_size), k_ramp_size, 4}, ramps.data());
     if (!consts.empty()) a.set("shader_consts", ElemType::F32, {consts.size()}, consts.data());
     std::vector<uint32_t> rows;
-    for (const ShaderOp& o : ops) rows.insert(rows.end(), {uint32_t(o.code), o.a, o.b, o.c, o.i[0], o.i[1], o.i[2], o.i[3]});
+    for (const ShaderOp& o : ops)
+        rows.insert(rows.end(), {uint32_t(o.code), o.a, o.b, o.c, o.i[0], o.i[1], o.i[2], o.i[3]});
     a.set("shader_ops", ElemType::U32, {ops.size(), 8}, rows.data());
     a.set("shader_programs", ElemType::U32, {program_start.size()}, program_start.data());
     if (!bindings.empty()) a.set("input_bindings", ElemType::U32, {bindings.size() / 6, 6}, bindings.data());

@@ -12,14 +12,14 @@
 namespace candela::test {
 
 struct ProgramBuilder {
-    std::vector<float> texels;             // RGBA
-    std::vector<uint8_t> bytes;            // RGBA, 8-bit images
-    std::vector<uint32_t> texture_info;    // rows of 5
-    std::vector<float> ramps;              // 256 × 4 per ramp
+    std::vector<float> texels;           // RGBA
+    std::vector<uint8_t> bytes;          // RGBA, 8-bit images
+    std::vector<uint32_t> texture_info;  // rows of 5
+    std::vector<float> ramps;            // 256 × 4 per ramp
     std::vector<float> consts;
     std::vector<ShaderOp> ops;
     std::vector<uint32_t> program_start{0};
-    std::vector<uint32_t> bindings;        // rows of 6
+    std::vector<uint32_t> bindings;  // rows of 6
 
     /// Adds a w×h image (rows bottom-up) from RGB values (alpha 1); returns its texture index.
     uint32_t image(uint32_t w, uint32_t h, const std::vector<Color>& rgb, TexColorSpace cs = TexColorSpace::Linear);

@@ -25,8 +25,8 @@ struct SkyWorld {
     uint32_t program = 0, reg = 0;
     explicit SkyWorld(float size_deg, bool disc = true) {
         const uint32_t offset = uint32_t(b.consts.size());
-        const float state[9] = {40.f * k_pi / 180.f, 30.f * k_pi / 180.f, 0.f, 1.f, 1.f, 1.f, disc ? 1.f : 0.f,
-                                size_deg * k_pi / 180.f, 1.f};
+        const float state[9] = {40.f * k_pi / 180.f, 30.f * k_pi / 180.f,     0.f, 1.f, 1.f, 1.f,
+                                disc ? 1.f : 0.f,    size_deg * k_pi / 180.f, 1.f};
         b.consts.insert(b.consts.end(), state, state + 9);
         const uint32_t dir = b.op(ShaderOpCode::Coord, 0, 0, 0, {uint32_t(CoordKind::Generated)});
         reg = b.op(ShaderOpCode::Sky, dir, 0, 0, {offset, uint32_t(SkyModel::Nishita), 0, 0});
@@ -85,9 +85,17 @@ TEST(SunDisc, SampleOverPdfMeasuresSolidAngles) {
     };
     const std::vector<Region> regions = {
         {"disc", [&](const Vec3& d) { return dot(d, sun) >= std::cos(half); }, cap(half)},
-        {"ring 1-2", [&](const Vec3& d) { const float c = dot(d, sun); return c < std::cos(half) && c >= std::cos(2.f * half); },
+        {"ring 1-2",
+         [&](const Vec3& d) {
+             const float c = dot(d, sun);
+             return c < std::cos(half) && c >= std::cos(2.f * half);
+         },
          cap(2.f * half) - cap(half)},
-        {"ring 2-8", [&](const Vec3& d) { const float c = dot(d, sun); return c < std::cos(2.f * half) && c >= std::cos(8.f * half); },
+        {"ring 2-8",
+         [&](const Vec3& d) {
+             const float c = dot(d, sun);
+             return c < std::cos(2.f * half) && c >= std::cos(8.f * half);
+         },
          cap(8.f * half) - cap(2.f * half)},
         {"upper", [](const Vec3& d) { return d.z >= 0.f; }, 2.0 * k_pi},
         {"lower", [](const Vec3& d) { return d.z < 0.f; }, 2.0 * k_pi},

@@ -23,8 +23,8 @@ struct FilterCase {
     const char* name;
     float width;
 };
-const FilterCase k_filters[] = {{"BOX", 1.f}, {"BOX", 2.5f}, {"GAUSSIAN", 1.5f}, {"BLACKMAN_HARRIS", 1.5f},
-                                {"BLACKMAN_HARRIS", 3.f}};
+const FilterCase k_filters[] = {
+    {"BOX", 1.f}, {"BOX", 2.5f}, {"GAUSSIAN", 1.5f}, {"BLACKMAN_HARRIS", 1.5f}, {"BLACKMAN_HARRIS", 3.f}};
 
 // The splat density is normalised: ∫ pdf = 1 (midpoint rule on 20,000 steps; the density is piecewise constant
 // on 4,096 intervals, so the rule's error is below 1e-4).
@@ -111,7 +111,8 @@ TEST(SplatFilm, ABorderFilmEqualsTheSamePixelsOfTheFullFrame) {
     Film full(20, 16, 0, 0, 8), crop(7, 5, 6, 4, 8);
     SplatBuffer buffer;
     Pcg32 rng(3, 1);
-    for (int i = 0; i < 5000; ++i) buffer.add({20.f * rng.next_float(), 16.f * rng.next_float()}, Color(rng.next_float()), i % 2);
+    for (int i = 0; i < 5000; ++i)
+        buffer.add({20.f * rng.next_float(), 16.f * rng.next_float()}, Color(rng.next_float()), i % 2);
     const double samples[k_noise_replicates] = {3.0, 3.0};
     full.add_splats(buffer, f, samples);
     crop.add_splats(buffer, f, samples);
@@ -278,7 +279,8 @@ std::vector<float> render_synthetic(int threads, int units, StopReason* stop = n
 }
 
 TEST(ProgressiveDriver, SplattedImagesAreTheSameForAnyThreadCount) {
-    const std::vector<float> one = render_synthetic(1, 12), two = render_synthetic(2, 12), four = render_synthetic(4, 12);
+    const std::vector<float> one = render_synthetic(1, 12), two = render_synthetic(2, 12),
+                             four = render_synthetic(4, 12);
     for (size_t i = 0; i < one.size(); ++i) {
         ASSERT_EQ(one[i], two[i]) << i;
         ASSERT_EQ(one[i], four[i]) << i;
@@ -395,7 +397,9 @@ TEST(ProgressiveDriver, WithoutAnHonestNoiseEstimateTheNoiseStopIsOffAndSaysSo) 
     ProgressivePlan plan;
     plan.total = 40;
     plan.noise_threshold = 0.05;
-    EXPECT_EQ(run_progressive(ctx, plan, [](int64_t, int64_t) {}, NoiseSource()), StopReason::Samples);
+    EXPECT_EQ(run_progressive(
+                  ctx, plan, [](int64_t, int64_t) {}, NoiseSource()),
+              StopReason::Samples);
     const auto lines = log.take();
     ASSERT_EQ(lines.size(), 1u);
     EXPECT_NE(lines[0].find("noise threshold"), std::string::npos);

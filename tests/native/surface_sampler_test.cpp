@@ -39,7 +39,7 @@ struct TestScene {
     MeshBuilder b;
     std::vector<std::vector<float>> transforms;  // per instance
     uint32_t emissive_material = 0, hidden_instance = 0, degenerate_instance = 0;
-    std::vector<bool> similarity;                // per instance: rotation, mirror, uniform scale
+    std::vector<bool> similarity;  // per instance: rotation, mirror, uniform scale
 };
 
 /// A flattened emissive quad, a box instanced three times (rotation with uniform scale, non-uniform scale, mirror),
@@ -86,7 +86,9 @@ double world_area(const TestScene& s, uint32_t instance, uint32_t t, bool object
     for (int k = 0; k < 3; ++k) {
         const float* p = &s.b.positions[3 * size_t(s.b.triangles[3 * tri + k])];
         for (int r = 0; r < 3; ++r)
-            v[k][r] = object_space ? p[r] : m[4 * r] * double(p[0]) + m[4 * r + 1] * double(p[1]) + m[4 * r + 2] * double(p[2]) + m[4 * r + 3];
+            v[k][r] = object_space ? p[r]
+                                   : m[4 * r] * double(p[0]) + m[4 * r + 1] * double(p[1]) +
+                                         m[4 * r + 2] * double(p[2]) + m[4 * r + 3];
     }
     const double e1[3] = {v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]};
     const double e2[3] = {v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]};

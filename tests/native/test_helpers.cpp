@@ -8,8 +8,8 @@
 #include "core/parallel.h"
 #include "film/film.h"
 #include "integrators/integrator.h"
-#include "scene/scene.h"
 #include "lights/light.h"
+#include "scene/scene.h"
 #include "session/session.h"
 
 namespace candela::test {
@@ -79,7 +79,8 @@ uint32_t MeshBuilder::add_box(Vec3 h, uint32_t material) {
         for (float v : {(i & 1) ? h.x : -h.x, (i & 2) ? h.y : -h.y, (i & 4) ? h.z : -h.z}) positions.push_back(v);
     const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& f : faces) {
-        triangles.insert(triangles.end(), {base + f[0], base + f[1], base + f[2], base + f[0], base + f[2], base + f[3]});
+        triangles.insert(triangles.end(),
+                         {base + f[0], base + f[1], base + f[2], base + f[0], base + f[2], base + f[3]});
         tri_material.insert(tri_material.end(), {material, material});
     }
     mesh_tri_start.push_back(uint32_t(triangles.size() / 3));
@@ -117,8 +118,12 @@ void MeshBuilder::add_light(uint32_t type, const std::vector<float>& row) {
 
 void MeshBuilder::add_point_light(Vec3 pos, Color strength, float radius) {
     std::vector<float> row(light_columns().size(), 0.f);
-    row[0] = strength.x; row[1] = strength.y; row[2] = strength.z;
-    row[3] = pos.x; row[4] = pos.y; row[5] = pos.z;
+    row[0] = strength.x;
+    row[1] = strength.y;
+    row[2] = strength.z;
+    row[3] = pos.x;
+    row[4] = pos.y;
+    row[5] = pos.z;
     row[8] = -1.f;
     row[15] = radius;
     add_light(0, row);
@@ -126,11 +131,21 @@ void MeshBuilder::add_point_light(Vec3 pos, Color strength, float radius) {
 
 void MeshBuilder::add_area_light(Vec3 center, Vec3 u, Vec3 v, Vec3 direction, Color strength, bool disk) {
     std::vector<float> row(20, 0.f);
-    row[0] = strength.x; row[1] = strength.y; row[2] = strength.z;
-    row[3] = center.x; row[4] = center.y; row[5] = center.z;
-    row[6] = direction.x; row[7] = direction.y; row[8] = direction.z;
-    row[9] = u.x; row[10] = u.y; row[11] = u.z;
-    row[12] = v.x; row[13] = v.y; row[14] = v.z;
+    row[0] = strength.x;
+    row[1] = strength.y;
+    row[2] = strength.z;
+    row[3] = center.x;
+    row[4] = center.y;
+    row[5] = center.z;
+    row[6] = direction.x;
+    row[7] = direction.y;
+    row[8] = direction.z;
+    row[9] = u.x;
+    row[10] = u.y;
+    row[11] = u.z;
+    row[12] = v.x;
+    row[13] = v.y;
+    row[14] = v.z;
     row[19] = disk ? 1.f : 0.f;
     add_light(3, row);
 }
@@ -255,7 +270,8 @@ SceneArrays furnace_scene(FurnaceScene kind, int segments, int rings) {
 }
 
 double furnace_expected(FurnaceScene kind, int max_bounces) {
-    return kind == FurnaceScene::EmissiveSphere ? 1.0 - std::pow(0.5, max_bounces + 2) : 1.0 - std::pow(0.5, max_bounces + 1);
+    return kind == FurnaceScene::EmissiveSphere ? 1.0 - std::pow(0.5, max_bounces + 2)
+                                                : 1.0 - std::pow(0.5, max_bounces + 1);
 }
 
 double furnace_facet_bias(int segments, int rings) {

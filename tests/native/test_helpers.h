@@ -7,8 +7,8 @@
 
 #include "core/params.h"
 #include "core/vec.h"
-#include "integrators/render_context.h"
 #include "input/scene_arrays.h"
+#include "integrators/render_context.h"
 
 namespace candela {
 class Scene;
@@ -33,7 +33,8 @@ struct MeshBuilder {
 
     uint32_t add_material(Color base, Color emission);
     /// Appends a closure to `material`: `values` maps closure column names to values (weight 1 by default).
-    void add_closure(uint32_t material, const std::string& type, const std::vector<std::pair<std::string, float>>& values);
+    void add_closure(uint32_t material, const std::string& type,
+                     const std::vector<std::pair<std::string, float>>& values);
     /// UV sphere (segments around, rings pole to pole) as one mesh; returns the mesh index.
     uint32_t add_sphere(float radius, int segments, int rings, uint32_t material);
     /// Axis-aligned quad in the z = h plane spanning [x0, x1] × [y0, y1]; returns the mesh index.
@@ -62,8 +63,8 @@ Params basic_params(int w, int h, int samples, int max_bounces);
 std::vector<float> look_at(Vec3 eye, Vec3 target, Vec3 up);
 
 struct RenderResult {
-    std::vector<float> rgba;      // bottom-up
-    std::vector<float> noise;     // per pixel: standard error of the mean luminance
+    std::vector<float> rgba;   // bottom-up
+    std::vector<float> noise;  // per pixel: standard error of the mean luminance
     int width = 0, height = 0;
     double mean_rgb = 0.0;        // mean over pixels and RGB channels
     double standard_error = 0.0;  // of mean_rgb's luminance estimate, from per-pixel sample variances

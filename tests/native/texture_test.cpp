@@ -29,7 +29,7 @@ void expect_vec(const Vec3& got, const Vec3& want, float tol, const char* what) 
 TEST(ColorSpace, SrgbDecodeMatchesTheStandard) {
     EXPECT_EQ(srgb_to_linear(0.f), 0.f);
     EXPECT_NEAR(srgb_to_linear(1.f), 1.f, k_eps);
-    EXPECT_NEAR(srgb_to_linear(0.5f), 0.214041140f, 1e-6f);      // ((0.5 + 0.055)/1.055)^2.4
+    EXPECT_NEAR(srgb_to_linear(0.5f), 0.214041140f, 1e-6f);     // ((0.5 + 0.055)/1.055)^2.4
     EXPECT_NEAR(srgb_to_linear(0.04f), 0.04f / 12.92f, 1e-9f);  // linear segment
     EXPECT_EQ(srgb_to_linear(-0.2f), 0.f);
     // The two pieces meet at the threshold (continuity to 1e-6 relative).
@@ -147,27 +147,49 @@ TEST(ShaderProgram, ConstCoordAndImage) {
 }
 
 TEST(ShaderProgram, MathOperationsFollowCyclesSafeRules) {
-    struct Case { MathOp op; float a, b, c, want; };
+    struct Case {
+        MathOp op;
+        float a, b, c, want;
+    };
     const Case cases[] = {
-        {MathOp::Add, 1.5f, 2.f, 0.f, 3.5f},          {MathOp::Subtract, 1.f, 3.f, 0.f, -2.f},
-        {MathOp::Multiply, 2.f, -3.f, 0.f, -6.f},      {MathOp::Divide, 1.f, 0.f, 0.f, 0.f},
-        {MathOp::Divide, 1.f, 4.f, 0.f, 0.25f},        {MathOp::MultiplyAdd, 2.f, 3.f, 1.f, 7.f},
-        {MathOp::Power, 2.f, 3.f, 0.f, 8.f},           {MathOp::Power, -2.f, 0.5f, 0.f, 0.f},
-        {MathOp::Power, -2.f, 3.f, 0.f, -8.f},         {MathOp::Logarithm, 8.f, 2.f, 0.f, 3.f},
-        {MathOp::Logarithm, -1.f, 2.f, 0.f, 0.f},      {MathOp::Sqrt, -4.f, 0.f, 0.f, 0.f},
-        {MathOp::InverseSqrt, 4.f, 0.f, 0.f, 0.5f},    {MathOp::Absolute, -3.f, 0.f, 0.f, 3.f},
-        {MathOp::Minimum, 1.f, 2.f, 0.f, 1.f},         {MathOp::Maximum, 1.f, 2.f, 0.f, 2.f},
-        {MathOp::LessThan, 1.f, 2.f, 0.f, 1.f},        {MathOp::GreaterThan, 1.f, 2.f, 0.f, 0.f},
-        {MathOp::Sign, -0.3f, 0.f, 0.f, -1.f},         {MathOp::Compare, 1.f, 1.05f, 0.1f, 1.f},
-        {MathOp::Compare, 1.f, 1.5f, 0.1f, 0.f},       {MathOp::Round, 2.5f, 0.f, 0.f, 3.f},
-        {MathOp::Floor, -1.5f, 0.f, 0.f, -2.f},        {MathOp::Ceil, -1.5f, 0.f, 0.f, -1.f},
-        {MathOp::Trunc, -1.5f, 0.f, 0.f, -1.f},        {MathOp::Fract, -1.25f, 0.f, 0.f, 0.75f},
-        {MathOp::Modulo, -5.f, 3.f, 0.f, -2.f},        {MathOp::Modulo, 5.f, 0.f, 0.f, 0.f},
-        {MathOp::Wrap, 5.5f, 2.f, 1.f, 1.5f},          {MathOp::Snap, 5.3f, 2.f, 0.f, 4.f},
-        {MathOp::Pingpong, 3.f, 2.f, 0.f, 1.f},        {MathOp::Sine, k_pi / 2, 0.f, 0.f, 1.f},
-        {MathOp::Arccosine, 2.f, 0.f, 0.f, 0.f},       {MathOp::Arctan2, 1.f, 1.f, 0.f, k_pi / 4},
-        {MathOp::Radians, 180.f, 0.f, 0.f, k_pi},      {MathOp::Degrees, k_pi, 0.f, 0.f, 180.f},
-        {MathOp::SmoothMin, 1.f, 1.f, 0.f, 1.f},       {MathOp::SmoothMin, 1.f, 1.f, 1.f, 1.f - 1.f / 6.f},
+        {MathOp::Add, 1.5f, 2.f, 0.f, 3.5f},
+        {MathOp::Subtract, 1.f, 3.f, 0.f, -2.f},
+        {MathOp::Multiply, 2.f, -3.f, 0.f, -6.f},
+        {MathOp::Divide, 1.f, 0.f, 0.f, 0.f},
+        {MathOp::Divide, 1.f, 4.f, 0.f, 0.25f},
+        {MathOp::MultiplyAdd, 2.f, 3.f, 1.f, 7.f},
+        {MathOp::Power, 2.f, 3.f, 0.f, 8.f},
+        {MathOp::Power, -2.f, 0.5f, 0.f, 0.f},
+        {MathOp::Power, -2.f, 3.f, 0.f, -8.f},
+        {MathOp::Logarithm, 8.f, 2.f, 0.f, 3.f},
+        {MathOp::Logarithm, -1.f, 2.f, 0.f, 0.f},
+        {MathOp::Sqrt, -4.f, 0.f, 0.f, 0.f},
+        {MathOp::InverseSqrt, 4.f, 0.f, 0.f, 0.5f},
+        {MathOp::Absolute, -3.f, 0.f, 0.f, 3.f},
+        {MathOp::Minimum, 1.f, 2.f, 0.f, 1.f},
+        {MathOp::Maximum, 1.f, 2.f, 0.f, 2.f},
+        {MathOp::LessThan, 1.f, 2.f, 0.f, 1.f},
+        {MathOp::GreaterThan, 1.f, 2.f, 0.f, 0.f},
+        {MathOp::Sign, -0.3f, 0.f, 0.f, -1.f},
+        {MathOp::Compare, 1.f, 1.05f, 0.1f, 1.f},
+        {MathOp::Compare, 1.f, 1.5f, 0.1f, 0.f},
+        {MathOp::Round, 2.5f, 0.f, 0.f, 3.f},
+        {MathOp::Floor, -1.5f, 0.f, 0.f, -2.f},
+        {MathOp::Ceil, -1.5f, 0.f, 0.f, -1.f},
+        {MathOp::Trunc, -1.5f, 0.f, 0.f, -1.f},
+        {MathOp::Fract, -1.25f, 0.f, 0.f, 0.75f},
+        {MathOp::Modulo, -5.f, 3.f, 0.f, -2.f},
+        {MathOp::Modulo, 5.f, 0.f, 0.f, 0.f},
+        {MathOp::Wrap, 5.5f, 2.f, 1.f, 1.5f},
+        {MathOp::Snap, 5.3f, 2.f, 0.f, 4.f},
+        {MathOp::Pingpong, 3.f, 2.f, 0.f, 1.f},
+        {MathOp::Sine, k_pi / 2, 0.f, 0.f, 1.f},
+        {MathOp::Arccosine, 2.f, 0.f, 0.f, 0.f},
+        {MathOp::Arctan2, 1.f, 1.f, 0.f, k_pi / 4},
+        {MathOp::Radians, 180.f, 0.f, 0.f, k_pi},
+        {MathOp::Degrees, k_pi, 0.f, 0.f, 180.f},
+        {MathOp::SmoothMin, 1.f, 1.f, 0.f, 1.f},
+        {MathOp::SmoothMin, 1.f, 1.f, 1.f, 1.f - 1.f / 6.f},
         {MathOp::SmoothMax, 1.f, 1.f, 1.f, 1.f + 1.f / 6.f},
     };
     for (const Case& c : cases)
@@ -191,7 +213,8 @@ TEST(ShaderProgram, MixBlends) {
     expect_vec(mix_blend(MixBlend::Multiply, 0.5f, a, c), a * (Color(0.5f) + c * 0.5f), k_eps, "multiply half");
     expect_vec(mix_blend(MixBlend::Add, 0.5f, a, c), a + c * 0.5f, k_eps, "add");
     expect_vec(mix_blend(MixBlend::Subtract, 1.f, a, c), a - c, k_eps, "subtract");
-    expect_vec(mix_blend(MixBlend::Screen, 1.f, a, c), Color(1.f) - (Color(1.f) - a) * (Color(1.f) - c), k_eps, "screen");
+    expect_vec(mix_blend(MixBlend::Screen, 1.f, a, c), Color(1.f) - (Color(1.f) - a) * (Color(1.f) - c), k_eps,
+               "screen");
     expect_vec(mix_blend(MixBlend::Difference, 1.f, a, c), vabs(a - c), k_eps, "difference");
     expect_vec(mix_blend(MixBlend::Darken, 1.f, a, c), vmin(a, c), k_eps, "darken");
     expect_vec(mix_blend(MixBlend::Lighten, 1.f, a, c), vmax(a, c), k_eps, "lighten");
@@ -200,7 +223,8 @@ TEST(ShaderProgram, MixBlends) {
     expect_vec(mix_blend(MixBlend::Divide, 1.f, a, c), a / c, k_eps, "divide");
     expect_vec(mix_blend(MixBlend::LinearLight, 1.f, a, c), a + c * 2.f - Color(1.f), k_eps, "linear light");
     // Value blend at t = 1 takes b's value with a's hue and saturation.
-    expect_vec(mix_blend(MixBlend::Value, 1.f, Color(0.5f, 0.25f, 0.f), Color(1.f)), Color(1.f, 0.5f, 0.f), 1e-5f, "value");
+    expect_vec(mix_blend(MixBlend::Value, 1.f, Color(0.5f, 0.25f, 0.f), Color(1.f)), Color(1.f, 0.5f, 0.f), 1e-5f,
+               "value");
 
     // Through a program: the factor clamps when asked, the result clamps when asked.
     ProgramBuilder b;
@@ -296,42 +320,45 @@ TEST(ShaderProgram, RandomProgramsStayFinite) {
         b.ramp(table);
         b.consts.insert(b.consts.end(), {1e30f, -1e30f, 0.f, 0.f, 1e-30f, 2.f, -1.f, 0.5f, 1e30f, 0.f, 0.f, 0.f});
         const float extremes[] = {1e30f, -1e30f, 0.f, 1e-30f, -0.5f, 3.f};
-        for (int k = 0; k < 4; ++k)
-            b.constant(Vec3(extremes[pick(6)], extremes[pick(6)], extremes[pick(6)]));
+        for (int k = 0; k < 4; ++k) b.constant(Vec3(extremes[pick(6)], extremes[pick(6)], extremes[pick(6)]));
         for (int k = 0; k < 30; ++k) {
             const uint32_t r = uint32_t(b.ops.size());
             const auto code = ShaderOpCode(1 + pick(uint32_t(shader_op_names().size()) - 1));
             std::array<uint32_t, 4> imm = {0, 0, 0, 0};
             switch (code) {
-                case ShaderOpCode::Coord: imm[0] = pick(uint32_t(coord_kind_names().size())); break;
-                case ShaderOpCode::Image:
-                case ShaderOpCode::ImageAlpha: imm = {0, pick(3), pick(3), pick(3)}; break;
-                case ShaderOpCode::Mix: imm = {pick(uint32_t(mix_blend_names().size())), pick(2), pick(2), pick(2)}; break;
-                case ShaderOpCode::Math: imm = {pick(uint32_t(math_op_names().size())), pick(2), 0, 0}; break;
-                case ShaderOpCode::Ramp:
-                case ShaderOpCode::RampAlpha: imm = {0, pick(2), 0, 0}; break;
-                case ShaderOpCode::Combine: imm[0] = pick(3); break;
-                case ShaderOpCode::Separate: imm = {pick(3), pick(3), 0, 0}; break;
-                case ShaderOpCode::Mapping: imm = {0, pick(2), 0, 0}; break;
-                case ShaderOpCode::NormalMap: imm[0] = pick(uint32_t(normal_map_space_names().size())); break;
-                // The procedural textures and converters (register immediates name earlier registers).
-                case ShaderOpCode::TexNoise:
-                case ShaderOpCode::TexWhiteNoise: imm = {1 + pick(4), pick(2), 0, 0}; break;
-                case ShaderOpCode::TexMusgrave: imm = {pick(r), 1 + pick(4), pick(uint32_t(musgrave_type_names().size())), 0}; break;
-                case ShaderOpCode::TexVoronoi:
-                    imm = {1 + pick(4), pick(uint32_t(voronoi_feature_names().size())),
-                           pick(uint32_t(voronoi_metric_names().size())), pick(5)};
-                    break;
-                case ShaderOpCode::TexWave: imm = {pick(2), pick(4), pick(3), 0}; break;
-                case ShaderOpCode::TexMagic: imm = {pick(11), pick(2), 0, 0}; break;
-                case ShaderOpCode::TexChecker: imm = {pick(r), pick(2), 0, 0}; break;
-                case ShaderOpCode::TexGradient: imm[0] = pick(uint32_t(gradient_type_names().size())); break;
-                case ShaderOpCode::TexBrick: imm = {pick(r), pick(r), pick(r), 0}; break;  // consts 0..4: ±1e30, 0, 0, 1e-30
-                case ShaderOpCode::VectorMath: imm = {pick(uint32_t(vector_math_op_names().size())), pick(2), 0, 0}; break;
-                case ShaderOpCode::MapRange: imm = {pick(r), pick(r), pick(r), pick(4) | (pick(2) << 8)}; break;
-                case ShaderOpCode::LayerWeight: imm[0] = pick(2); break;
-                case ShaderOpCode::Bump: imm = {pick(r), pick(r), pick(2), 0}; break;
-                default: break;
+            case ShaderOpCode::Coord: imm[0] = pick(uint32_t(coord_kind_names().size())); break;
+            case ShaderOpCode::Image:
+            case ShaderOpCode::ImageAlpha: imm = {0, pick(3), pick(3), pick(3)}; break;
+            case ShaderOpCode::Mix: imm = {pick(uint32_t(mix_blend_names().size())), pick(2), pick(2), pick(2)}; break;
+            case ShaderOpCode::Math: imm = {pick(uint32_t(math_op_names().size())), pick(2), 0, 0}; break;
+            case ShaderOpCode::Ramp:
+            case ShaderOpCode::RampAlpha: imm = {0, pick(2), 0, 0}; break;
+            case ShaderOpCode::Combine: imm[0] = pick(3); break;
+            case ShaderOpCode::Separate: imm = {pick(3), pick(3), 0, 0}; break;
+            case ShaderOpCode::Mapping: imm = {0, pick(2), 0, 0}; break;
+            case ShaderOpCode::NormalMap: imm[0] = pick(uint32_t(normal_map_space_names().size())); break;
+            // The procedural textures and converters (register immediates name earlier registers).
+            case ShaderOpCode::TexNoise:
+            case ShaderOpCode::TexWhiteNoise: imm = {1 + pick(4), pick(2), 0, 0}; break;
+            case ShaderOpCode::TexMusgrave:
+                imm = {pick(r), 1 + pick(4), pick(uint32_t(musgrave_type_names().size())), 0};
+                break;
+            case ShaderOpCode::TexVoronoi:
+                imm = {1 + pick(4), pick(uint32_t(voronoi_feature_names().size())),
+                       pick(uint32_t(voronoi_metric_names().size())), pick(5)};
+                break;
+            case ShaderOpCode::TexWave: imm = {pick(2), pick(4), pick(3), 0}; break;
+            case ShaderOpCode::TexMagic: imm = {pick(11), pick(2), 0, 0}; break;
+            case ShaderOpCode::TexChecker: imm = {pick(r), pick(2), 0, 0}; break;
+            case ShaderOpCode::TexGradient: imm[0] = pick(uint32_t(gradient_type_names().size())); break;
+            case ShaderOpCode::TexBrick:
+                imm = {pick(r), pick(r), pick(r), 0};
+                break;  // consts 0..4: ±1e30, 0, 0, 1e-30
+            case ShaderOpCode::VectorMath: imm = {pick(uint32_t(vector_math_op_names().size())), pick(2), 0, 0}; break;
+            case ShaderOpCode::MapRange: imm = {pick(r), pick(r), pick(r), pick(4) | (pick(2) << 8)}; break;
+            case ShaderOpCode::LayerWeight: imm[0] = pick(2); break;
+            case ShaderOpCode::Bump: imm = {pick(r), pick(r), pick(2), 0}; break;
+            default: break;
             }
             b.op(code, pick(r), pick(r), pick(r), imm);
         }
@@ -377,7 +404,8 @@ Vec3 guarded(const ShadingInputs& in, const Vec3& n) { return ensure_valid_refle
 TEST(NormalMap, FlatMapChangesNothing) {
     const ShadingInputs in = tilted_frame();
     for (float strength : {1.f, 0.5f, 2.f})
-        expect_vec(normal_map_of(in, NormalMapSpace::Tangent, Vec3(0.5f, 0.5f, 1.f), strength), in.normal, 1e-6f, "flat");
+        expect_vec(normal_map_of(in, NormalMapSpace::Tangent, Vec3(0.5f, 0.5f, 1.f), strength), in.normal, 1e-6f,
+                   "flat");
 }
 
 TEST(NormalMap, TangentSpaceTiltsAlongTheTangentFrame) {
@@ -392,7 +420,8 @@ TEST(NormalMap, TangentSpaceTiltsAlongTheTangentFrame) {
     }
     // (0.5, 1, 0.5) encodes the bitangent sign·(N × T); a negative sign mirrors it.
     const Vec3 bt = cross(in.normal, in.tangent);
-    expect_vec(normal_map_of(in, NormalMapSpace::Tangent, Vec3(0.5f, 1.f, 0.5f), 1.f), guarded(in, bt), 1e-6f, "bitangent");
+    expect_vec(normal_map_of(in, NormalMapSpace::Tangent, Vec3(0.5f, 1.f, 0.5f), 1.f), guarded(in, bt), 1e-6f,
+               "bitangent");
     ShadingInputs mirrored = in;
     mirrored.tangent_sign = -1.f;
     expect_vec(normal_map_of(mirrored, NormalMapSpace::Tangent, Vec3(0.5f, 1.f, 0.5f), 1.f), guarded(in, -bt), 1e-6f,
@@ -421,19 +450,19 @@ TEST(NormalMap, ObjectAndWorldSpaces) {
     expect_vec(normal_map_of(in, NormalMapSpace::Object, Vec3(1.f, 0.5f, 0.5f), 1.f), guarded(in, Vec3(0, 1, 0)), 1e-6f,
                "object");
     // Blender's own convention negates y and z.
-    expect_vec(normal_map_of(in, NormalMapSpace::BlenderWorld, Vec3(0.5f, 1.f, 0.5f), 1.f),
-               guarded(in, Vec3(0, -1, 0)), 1e-6f, "blender world");
+    expect_vec(normal_map_of(in, NormalMapSpace::BlenderWorld, Vec3(0.5f, 1.f, 0.5f), 1.f), guarded(in, Vec3(0, -1, 0)),
+               1e-6f, "blender world");
 }
 
 // ---- equirectangular mapping --------------------------------------------------------------------------------
 
 TEST(Equirectangular, BlenderConvention) {
     auto uv = [](Vec3 d) { return direction_to_equirectangular(d); };
-    EXPECT_NEAR(uv(Vec3(1, 0, 0)).x, 0.5f, k_eps);   // the image centre faces +X
+    EXPECT_NEAR(uv(Vec3(1, 0, 0)).x, 0.5f, k_eps);  // the image centre faces +X
     EXPECT_NEAR(uv(Vec3(1, 0, 0)).y, 0.5f, k_eps);
     EXPECT_NEAR(uv(Vec3(0, 1, 0)).x, 0.25f, k_eps);  // +Y is a quarter turn left of centre
     EXPECT_NEAR(uv(Vec3(0, -1, 0)).x, 0.75f, k_eps);
-    EXPECT_NEAR(uv(Vec3(0, 0, 1)).y, 1.f, k_eps);    // up is the top row
+    EXPECT_NEAR(uv(Vec3(0, 0, 1)).y, 1.f, k_eps);  // up is the top row
     EXPECT_NEAR(uv(Vec3(0, 0, -1)).y, 0.f, k_eps);
     for (const Vec3 d : {normalize(Vec3(0.3f, -0.5f, 0.2f)), normalize(Vec3(-0.7f, 0.1f, -0.6f))}) {
         const Vec2 p = uv(d);

@@ -108,9 +108,10 @@ TEST(TexturedEmitter, IsSampledAsALightAndEveryStrategyAgrees) {
     const std::pair<const char*, const Strategy*> others[] = {
         {"LIGHT_ONLY (solid angle)", &light_sa}, {"LIGHT_ONLY (area)", &light_area}, {"MIS", &mis}};
     auto agree = [](const char* a_name, const Strategy& a, const char* b_name, const Strategy& b) {
-        const double tolerance = 5.0 * std::sqrt(a.standard_error * a.standard_error + b.standard_error * b.standard_error);
-        EXPECT_NEAR(a.mean, b.mean, tolerance) << a_name << " against " << b_name << " (σ " << a.standard_error << ", "
-                                               << b.standard_error << ")";
+        const double tolerance =
+            5.0 * std::sqrt(a.standard_error * a.standard_error + b.standard_error * b.standard_error);
+        EXPECT_NEAR(a.mean, b.mean, tolerance)
+            << a_name << " against " << b_name << " (σ " << a.standard_error << ", " << b.standard_error << ")";
     };
     for (const auto& [name, s] : others) agree(name, *s, "BSDF_ONLY", bsdf);
     // The light-sampled strategies are much less noisy: compare them with each other too (tighter).
@@ -121,10 +122,12 @@ TEST(TexturedEmitter, IsSampledAsALightAndEveryStrategyAgrees) {
         << bsdf.pixel_variance << ")";
     EXPECT_LT(light_area.pixel_variance, 0.5 * bsdf.pixel_variance);
     RecordProperty("variance_ratio_light_sa", std::to_string(light_sa.pixel_variance / bsdf.pixel_variance));
-    std::printf("means: bsdf %.5f±%.5f light(sa) %.5f±%.5f light(area) %.5f±%.5f mis %.5f±%.5f; variance ratios %.4f %.4f %.4f\n",
-                bsdf.mean, bsdf.standard_error, light_sa.mean, light_sa.standard_error, light_area.mean,
-                light_area.standard_error, mis.mean, mis.standard_error, light_sa.pixel_variance / bsdf.pixel_variance,
-                light_area.pixel_variance / bsdf.pixel_variance, mis.pixel_variance / bsdf.pixel_variance);
+    std::printf(
+        "means: bsdf %.5f±%.5f light(sa) %.5f±%.5f light(area) %.5f±%.5f mis %.5f±%.5f; variance ratios %.4f %.4f "
+        "%.4f\n",
+        bsdf.mean, bsdf.standard_error, light_sa.mean, light_sa.standard_error, light_area.mean,
+        light_area.standard_error, mis.mean, mis.standard_error, light_sa.pixel_variance / bsdf.pixel_variance,
+        light_area.pixel_variance / bsdf.pixel_variance, mis.pixel_variance / bsdf.pixel_variance);
 }
 
 }  // namespace

@@ -9,8 +9,8 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "shader_test_helpers.h"
-#include "texture/node_math.h"
 #include "test_helpers.h"
+#include "texture/node_math.h"
 
 namespace candela::test {
 namespace {
@@ -37,7 +37,8 @@ void add_quad_uvs(SceneArrays& a) {
 uint32_t two_tone(ProgramBuilder& b, Color l, Color r, CoordKind kind, uint32_t* reg) {
     const uint32_t tex = b.image(2, 1, {l, r});
     const uint32_t co = b.op(ShaderOpCode::Coord, 0, 0, 0, {uint32_t(kind)});
-    *reg = b.op(ShaderOpCode::Image, co, 0, 0, {tex, uint32_t(TexInterpolation::Closest), uint32_t(TexExtension::Extend), 0});
+    *reg = b.op(ShaderOpCode::Image, co, 0, 0,
+                {tex, uint32_t(TexInterpolation::Closest), uint32_t(TexExtension::Extend), 0});
     return b.end_program();
 }
 

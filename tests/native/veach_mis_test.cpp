@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "core/math.h"
+#include "reference_scenes.h"
 #include "scene/scene.h"
 #include "test_helpers.h"
-#include "reference_scenes.h"
 
 namespace candela::test {
 namespace {
@@ -126,8 +126,9 @@ TEST(VeachMis, StrategiesAgreeAndMisHasTheLeastVarianceOnEveryPlate) {
         ASSERT_GT(st[0].pixels, 100) << k_plate_names[plate] << ": the plate mask is too small";
         for (int k = 0; k < 3; ++k)
             ::testing::Test::RecordProperty(std::string(k_plate_names[plate]) + " " + strategies[k],
-                                            "mean " + std::to_string(st[k].mean) + " ± " + std::to_string(st[k].mean_se) +
-                                                ", pixel variance " + std::to_string(st[k].variance));
+                                            "mean " + std::to_string(st[k].mean) + " ± " +
+                                                std::to_string(st[k].mean_se) + ", pixel variance " +
+                                                std::to_string(st[k].variance));
         // The comparison means something only if the MIS plate mean is known well (measured: 0.7–4 %).
         EXPECT_LT(st[2].mean_se, 0.06 * st[2].mean) << k_plate_names[plate];
         // 1. Same image.

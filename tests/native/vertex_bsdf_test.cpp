@@ -22,7 +22,8 @@ SceneArrays tilted_triangle(const std::string& closure, float roughness, float t
     MeshBuilder b;
     const uint32_t m = b.add_material(Color(0.f), Color(0.f));
     if (closure == "GLASS")
-        b.add_closure(m, "GLASS", {{"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}, {"ior", 1.5f}, {"roughness", roughness}});
+        b.add_closure(m, "GLASS",
+                      {{"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}, {"ior", 1.5f}, {"roughness", roughness}});
     else
         b.add_closure(m, closure, {{"color_r", 0.8f}, {"color_g", 0.8f}, {"color_b", 0.8f}, {"roughness", roughness}});
     b.add_instance(b.add_triangle(Vec3(-1.f, -1.f, -2.f), Vec3(1.f, -1.f, -2.f), Vec3(0.f, 1.f, -2.f), m));
@@ -40,8 +41,8 @@ struct Case {
     const char* closure;
     float roughness, tilt;
 };
-const Case k_cases[] = {{"DIFFUSE", 0.f, 0.f}, {"DIFFUSE", 0.f, 0.5f}, {"GLOSSY", 0.5f, 0.f}, {"GLOSSY", 0.5f, 0.4f},
-                        {"GLASS", 0.5f, 0.f},  {"GLASS", 0.5f, 0.35f}};
+const Case k_cases[] = {{"DIFFUSE", 0.f, 0.f},  {"DIFFUSE", 0.f, 0.5f}, {"GLOSSY", 0.5f, 0.f},
+                        {"GLOSSY", 0.5f, 0.4f}, {"GLASS", 0.5f, 0.f},   {"GLASS", 0.5f, 0.35f}};
 const double k_alpha = sidak_alpha(1e-3, 2 * int(std::size(k_cases)) * 3);
 
 struct Fixture {
@@ -105,14 +106,16 @@ TEST(VertexBsdf, LightSideSamplingCoversThePathBsdf) {
             const int n = 400000;
             double sum = 0.0, sum_sq = 0.0;
             for (int k = 0; k < n; ++k) {
-                const VertexBsdf::Sample s = v.sample_light(w_l, {rng.next_float(), rng.next_float()}, rng.next_float());
+                const VertexBsdf::Sample s =
+                    v.sample_light(w_l, {rng.next_float(), rng.next_float()}, rng.next_float());
                 const double x = s.valid() ? luminance(s.weight) : 0.0;
                 sum += x;
                 sum_sq += x * x;
             }
             const double mean = sum / n, se = std::sqrt(std::max(0.0, sum_sq / n - mean * mean) / n);
             // The quadrature's own error (400 × 800 cells, lobes of roughness 0.5) is below 0.3 %.
-            EXPECT_NEAR(mean, integral, 5.0 * se + 3e-3 * integral) << c.closure << " tilt " << c.tilt << " w_l " << w_l.x;
+            EXPECT_NEAR(mean, integral, 5.0 * se + 3e-3 * integral)
+                << c.closure << " tilt " << c.tilt << " w_l " << w_l.x;
         }
     }
 }
@@ -123,8 +126,8 @@ TEST(VertexBsdf, TheBsdfIsTheSameWhicheverSideShadedFirst) {
     for (const Case& c : k_cases) {
         Fixture fx(c);
         const Vec3 a = normalize(Vec3(0.2f, 0.1f, 1.f)), b = std::string(c.closure) == "GLASS"
-                                                                  ? normalize(Vec3(-0.3f, 0.2f, -1.f))
-                                                                  : normalize(Vec3(-0.5f, 0.2f, 0.7f));
+                                                                 ? normalize(Vec3(-0.3f, 0.2f, -1.f))
+                                                                 : normalize(Vec3(-0.5f, 0.2f, 0.7f));
         const VertexBsdf from_a(*fx.scene, fx.hit, a, fx.scene->shade(fx.hit, a));
         const VertexBsdf from_b(*fx.scene, fx.hit, b, fx.scene->shade(fx.hit, b));
         EXPECT_EQ(luminance(from_a.f(a, b)), luminance(from_b.f(a, b))) << c.closure;

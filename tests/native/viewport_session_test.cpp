@@ -47,8 +47,8 @@ TEST(MeshBvhCache, KeyDependsOnContentOnly) {
     const float moved[] = {9, 9, 9, 0, 0, 0, 1, 0, 0, 0, 1, 0};
     const uint32_t tri_moved[] = {1, 2, 3};
     EXPECT_EQ(a, MeshBvhCache::key(moved + 3, 3, tri_moved, 1, 1, 0));
-    EXPECT_FALSE(a == MeshBvhCache::key(pos + 9, 3, tri_b, 1, 3, 0));   // other vertices
-    EXPECT_FALSE(a == MeshBvhCache::key(pos, 3, tri_a, 1, 0, 1));       // other filter flags
+    EXPECT_FALSE(a == MeshBvhCache::key(pos + 9, 3, tri_b, 1, 3, 0));  // other vertices
+    EXPECT_FALSE(a == MeshBvhCache::key(pos, 3, tri_a, 1, 0, 1));      // other filter flags
 }
 
 TEST(MeshBvhCache, TransformEditsReuseEveryMeshBvhAndHitTheSame) {
@@ -117,7 +117,8 @@ ViewportStatus wait_done(ViewportSession& s, std::vector<int>* pixel_sizes = nul
         ViewportImage image;
         if (pixel_sizes && s.image(seen, &image)) {
             seen = image.version;
-            if (pixel_sizes->empty() || pixel_sizes->back() != image.pixel_size) pixel_sizes->push_back(image.pixel_size);
+            if (pixel_sizes->empty() || pixel_sizes->back() != image.pixel_size)
+                pixel_sizes->push_back(image.pixel_size);
         }
         const ViewportStatus st = s.status();
         if (st.phase == "done" || st.phase == "failed") return st;
@@ -183,22 +184,22 @@ TEST(ViewportSession, ErrorsAreReportedAndClearedByTheNextScene) {
     MeshBuilder b = two_objects();
     Params settings = test::basic_params(16, 12, 1, 1);
     ViewportSession vs(1);
-    EXPECT_THROW(vs.set_view(Params(), Affine()), InvalidParameter);   // no size: refused at once
+    EXPECT_THROW(vs.set_view(Params(), Affine()), InvalidParameter);  // no size: refused at once
     Params bad_view = view_params(16, 12);
     bad_view.set("pixel_size", int64_t(0));
     EXPECT_THROW(vs.set_view(bad_view, Affine()), InvalidParameter);
     MeshBuilder broken = b;
     broken.triangles[0] = 999;
-    EXPECT_THROW(vs.update_scene(broken.arrays(), settings), InvalidScene);   // validated on the caller's thread
+    EXPECT_THROW(vs.update_scene(broken.arrays(), settings), InvalidScene);  // validated on the caller's thread
     MeshBuilder degenerate = b;
-    for (int k = 0; k < 12; ++k) degenerate.instance_transform[16 + k] = 0.f;   // instance 1: zero scale
+    for (int k = 0; k < 12; ++k) degenerate.instance_transform[16 + k] = 0.f;  // instance 1: zero scale
     vs.update_scene(degenerate.arrays(), settings);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));   // the build may fail before the view arrives
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the build may fail before the view arrives
     vs.set_view(view_params(16, 12), Affine());
     ViewportStatus st = wait_done(vs);
     ASSERT_TRUE(st.error);
     EXPECT_NE(st.error->find("instance 1"), std::string::npos) << *st.error;
-    vs.set_view(view_params(16, 12), Affine());   // a view change does not hide a scene that cannot be built
+    vs.set_view(view_params(16, 12), Affine());  // a view change does not hide a scene that cannot be built
     EXPECT_TRUE(vs.status().error);
     vs.update_scene(b.arrays(), settings);
     st = wait_done(vs);
@@ -266,13 +267,13 @@ TEST(ViewportSession, StopsAtAnyMoment) {
         std::this_thread::sleep_for(std::chrono::milliseconds(when));
         vs.stop();
         EXPECT_EQ(vs.status().phase, "stopped");
-        EXPECT_EQ(vs.set_view(view_params(200, 150), Affine()), 0u);   // ignored after stop
+        EXPECT_EQ(vs.set_view(view_params(200, 150), Affine()), 0u);  // ignored after stop
     }
     ViewportSession running(2);
     running.update_scene(b.arrays(), settings);
     running.set_view(view_params(200, 150), Affine());
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-}   // ~ViewportSession stops it
+}  // ~ViewportSession stops it
 
 }  // namespace
 }  // namespace candela

@@ -32,12 +32,14 @@ SceneArrays many_light_scene() {
     }
     for (int i = 0; i < 2; ++i) {
         std::vector<float> row(20, 0.f);
-        row[0] = row[1] = row[2] = 2.f + 8.f * float(i);          // W
-        row[3] = i == 0 ? -0.3f : 0.35f; row[4] = 0.1f; row[5] = -0.6f;  // position
-        row[8] = -1.f;                                             // shines down (−Z)
-        row[9] = 0.2f;                                             // u: 0.2 along X
-        row[13] = 0.2f;                                            // v: 0.2 along Y
-        row[19] = 0.f;                                             // square
+        row[0] = row[1] = row[2] = 2.f + 8.f * float(i);  // W
+        row[3] = i == 0 ? -0.3f : 0.35f;
+        row[4] = 0.1f;
+        row[5] = -0.6f;  // position
+        row[8] = -1.f;   // shines down (−Z)
+        row[9] = 0.2f;   // u: 0.2 along X
+        row[13] = 0.2f;  // v: 0.2 along Y
+        row[19] = 0.f;   // square
         b.add_light(3, row);
     }
     return b.arrays();

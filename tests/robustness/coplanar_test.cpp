@@ -45,12 +45,12 @@ struct Room {
         const uint32_t grey = b.add_material(Color(0.6f), Color(0.f));
         const uint32_t blue = b.add_material(Color(0.f, 0.f, 0.8f), Color(0.f));
         auto quad = [&](Vec3 p0, Vec3 e1, Vec3 e2, uint32_t m) { b.add_instance(b.add_quad(p0, e1, e2, m)); };
-        quad(at(-1.5f, 1.f, -4.f), vec(3.f, 0, 0), vec(0, 0, 5.f), blue);       // ceiling
-        quad(at(-1.5f, -1.f, -4.f), vec(0, 0, 5.f), vec(3.f, 0, 0), grey);      // floor
-        quad(at(-1.5f, -1.f, -4.f), vec(3.f, 0, 0), vec(0, 2.f, 0), grey);      // far wall
-        quad(at(-1.5f, -1.f, 1.f), vec(0, 2.f, 0), vec(3.f, 0, 0), grey);       // wall behind the camera
-        quad(at(-1.5f, -1.f, -4.f), vec(0, 2.f, 0), vec(0, 0, 5.f), grey);      // left
-        quad(at(1.5f, -1.f, -4.f), vec(0, 0, 5.f), vec(0, 2.f, 0), grey);       // right
+        quad(at(-1.5f, 1.f, -4.f), vec(3.f, 0, 0), vec(0, 0, 5.f), blue);   // ceiling
+        quad(at(-1.5f, -1.f, -4.f), vec(0, 0, 5.f), vec(3.f, 0, 0), grey);  // floor
+        quad(at(-1.5f, -1.f, -4.f), vec(3.f, 0, 0), vec(0, 2.f, 0), grey);  // far wall
+        quad(at(-1.5f, -1.f, 1.f), vec(0, 2.f, 0), vec(3.f, 0, 0), grey);   // wall behind the camera
+        quad(at(-1.5f, -1.f, -4.f), vec(0, 2.f, 0), vec(0, 0, 5.f), grey);  // left
+        quad(at(1.5f, -1.f, -4.f), vec(0, 0, 5.f), vec(0, 2.f, 0), grey);   // right
         if (point_light) b.add_point_light(at(0.f, 0.f, -2.f), Color(20.f * scale * scale));
     }
     std::vector<float> camera() const { return camera_rows(at(0.f, 0.f, 0.f), 0.45f); }
@@ -128,8 +128,8 @@ TEST(Coplanar, EmissiveQuadOnTheCeilingShowsNoSpeckle) {
 // show one colour, and the same one everywhere.
 TEST(Coplanar, OverlappingQuadsOfTwoColoursShowOneOfThemEverywhere) {
     struct View {
-        float pitch;       // camera tilt toward the plane's normal
-        float roll;        // rotation of the quads about the view axis
+        float pitch;  // camera tilt toward the plane's normal
+        float roll;   // rotation of the quads about the view axis
         std::string name;
     };
     for (const Placement& pl : k_placements)
@@ -138,8 +138,22 @@ TEST(Coplanar, OverlappingQuadsOfTwoColoursShowOneOfThemEverywhere) {
             const std::string what = pl.name + ", " + v.name;
             // The plane z = −2 (face-on) seen by a camera pitched by v.pitch: at −1.25 rad it is seen at 18°.
             const float c = std::cos(v.roll), s = std::sin(v.roll);
-            const std::vector<float> xf = {c * pl.scale, -s * pl.scale, 0, pl.offset.x, s * pl.scale, c * pl.scale, 0,
-                                           pl.offset.y,  0, 0, pl.scale, pl.offset.z,    0, 0, 0, 1};
+            const std::vector<float> xf = {c * pl.scale,
+                                           -s * pl.scale,
+                                           0,
+                                           pl.offset.x,
+                                           s * pl.scale,
+                                           c * pl.scale,
+                                           0,
+                                           pl.offset.y,
+                                           0,
+                                           0,
+                                           pl.scale,
+                                           pl.offset.z,
+                                           0,
+                                           0,
+                                           0,
+                                           1};
             // Grazing: 0.5 in front of the plane, looking down at 18° to it, toward the overlap.
             const Vec3 eye = v.pitch != 0.f ? Vec3(0.f, 1.8f, -1.5f) : Vec3(0.f);
             const auto cam = camera_rows(pl.offset + eye * pl.scale, v.pitch);
@@ -147,8 +161,12 @@ TEST(Coplanar, OverlappingQuadsOfTwoColoursShowOneOfThemEverywhere) {
                 ShadedBuilder b;
                 const uint32_t mr = b.add_material(Color(0.8f, 0.f, 0.f), Color(0.f));
                 const uint32_t mg = b.add_material(Color(0.f, 0.8f, 0.f), Color(0.f));
-                if (red) b.add_instance(b.add_quad(Vec3(-1.f, -1.f, -2.f), Vec3(1.3f, 0, 0), Vec3(0, 3.f, 0), mr), xf.data());
-                if (green) b.add_instance(b.add_quad(Vec3(-0.3f, -1.f, -2.f), Vec3(1.3f, 0, 0), Vec3(0, 3.f, 0), mg), xf.data());
+                if (red)
+                    b.add_instance(b.add_quad(Vec3(-1.f, -1.f, -2.f), Vec3(1.3f, 0, 0), Vec3(0, 3.f, 0), mr),
+                                   xf.data());
+                if (green)
+                    b.add_instance(b.add_quad(Vec3(-0.3f, -1.f, -2.f), Vec3(1.3f, 0, 0), Vec3(0, 3.f, 0), mg),
+                                   xf.data());
                 b.add_point_light(pl.offset + Vec3(0.f, 0.f, 0.f), Color(30.f * pl.scale * pl.scale));
                 b.world_color = {0.1f, 0.1f, 0.1f};
                 return b.arrays(cam.data());
@@ -167,8 +185,8 @@ TEST(Coplanar, OverlappingQuadsOfTwoColoursShowOneOfThemEverywhere) {
                 green_only += G > 0.f && R == 0.f;
             }
             EXPECT_EQ(mixed, 0u) << what << ": overlap pixels showing both quads";
-            EXPECT_TRUE(red_only == 0 || green_only == 0) << what << ": " << red_only << " red and " << green_only
-                                                          << " green overlap pixels";
+            EXPECT_TRUE(red_only == 0 || green_only == 0)
+                << what << ": " << red_only << " red and " << green_only << " green overlap pixels";
             EXPECT_EQ(count_speckles(both, overlap), 0u) << what;
         }
 }
@@ -205,7 +223,8 @@ TEST(Coplanar, ParallelQuadsAGapOf1e4ApartStayDistinct) {
 // The speckle measure can fail: one pixel of a smooth render pushed by 10σ is found, and only that one.
 TEST(Coplanar, SpeckleMeasureFindsAnInjectedOutlier) {
     ShadedBuilder b;
-    b.add_instance(b.add_quad(Vec3(-2.f, -2.f, -2.f), Vec3(4.f, 0, 0), Vec3(0, 4.f, 0), b.add_material(Color(0.7f), Color(0.f))));
+    b.add_instance(
+        b.add_quad(Vec3(-2.f, -2.f, -2.f), Vec3(4.f, 0, 0), Vec3(0, 4.f, 0), b.add_material(Color(0.7f), Color(0.f))));
     b.add_point_light(Vec3(0.f, 0.f, 0.f), Color(30.f));
     RenderResult r = render(b.arrays(), params(24, 18, 16, 1));
     std::vector<uint8_t> all(r.noise.size(), 1);

@@ -106,8 +106,8 @@ uint32_t ShadedBuilder::add_smooth_cylinder(float radius, float z0, float z1, in
 
 void ShadedBuilder::add_area_light(Vec3 center, Vec3 u, Vec3 v, Vec3 dir, Color strength) {
     std::vector<float> row(20, 0.f);
-    const float values[15] = {strength.x, strength.y, strength.z, center.x, center.y, center.z, dir.x, dir.y, dir.z,
-                              u.x,        u.y,        u.z,        v.x,      v.y,      v.z};
+    const float values[15] = {strength.x, strength.y, strength.z, center.x, center.y, center.z, dir.x, dir.y,
+                              dir.z,      u.x,        u.y,        u.z,      v.x,      v.y,      v.z};
     std::copy(values, values + 15, row.begin());
     add_light(3, row);
 }
@@ -132,7 +132,8 @@ double pixel_luminance(const RenderResult& r, size_t i) {
     return 0.2126 * r.rgba[4 * i] + 0.7152 * r.rgba[4 * i + 1] + 0.0722 * r.rgba[4 * i + 2];
 }
 
-size_t count_disagreeing_pixels(const RenderResult& a, const RenderResult& b, double k, const std::vector<uint8_t>* mask) {
+size_t count_disagreeing_pixels(const RenderResult& a, const RenderResult& b, double k,
+                                const std::vector<uint8_t>* mask) {
     size_t bad = 0;
     for (size_t i = 0; i < a.noise.size(); ++i) {
         if (mask && !(*mask)[i]) continue;
@@ -165,7 +166,8 @@ size_t count_speckles(const RenderResult& r, const std::vector<uint8_t>& mask, d
             const double median = 0.5 * (nb[3] + nb[4]);
             const double v = pixel_luminance(r, i);
             const double structure = 2.0 * (nb[6] - nb[1]);
-            bad += !(std::fabs(v - median) <= k * std::hypot(double(r.noise[i]), sigma_n) + structure + 1e-5 * std::fabs(median));
+            bad += !(std::fabs(v - median) <=
+                     k * std::hypot(double(r.noise[i]), sigma_n) + structure + 1e-5 * std::fabs(median));
         }
     return bad;
 }

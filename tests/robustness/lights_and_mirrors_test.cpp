@@ -116,16 +116,20 @@ TEST(NegativeScale, MirroredObjectsRenderLikeTheOriginals) {
                 const uint32_t ball = b.add_smooth_sphere(0.7f, 16, 8, glass);
                 b.add_instance(ball, scale_translate(sc, Vec3(-0.8f, 0.f, -4.f)).data());
                 if (instanced) b.add_instance(ball, scale_translate(sc, Vec3(0.9f, 0.4f, -4.5f)).data());
-                b.add_instance(b.add_smooth_sphere(0.4f, 10, 6, red), scale_translate(sc, Vec3(0.8f, -0.6f, -3.5f)).data());
+                b.add_instance(b.add_smooth_sphere(0.4f, 10, 6, red),
+                               scale_translate(sc, Vec3(0.8f, -0.6f, -3.5f)).data());
                 // A striped back wall, so refraction shows.
                 for (int k = 0; k < 6; ++k)
-                    b.add_instance(b.add_quad(Vec3(-3.f + k, -2.f, -6.f), Vec3(1.f, 0, 0), Vec3(0, 4.f, 0), k % 2 ? red : grey));
-                b.add_area_light(Vec3(0.f, 2.f, -3.f), Vec3(2.f, 0, 0), Vec3(0, 0, 2.f), Vec3(0, -1.f, 0), Color(400.f));
+                    b.add_instance(
+                        b.add_quad(Vec3(-3.f + k, -2.f, -6.f), Vec3(1.f, 0, 0), Vec3(0, 4.f, 0), k % 2 ? red : grey));
+                b.add_area_light(Vec3(0.f, 2.f, -3.f), Vec3(2.f, 0, 0), Vec3(0, 0, 2.f), Vec3(0, -1.f, 0),
+                                 Color(400.f));
                 b.world_color = {0.2f, 0.2f, 0.2f};
                 return b.arrays();
             };
             const std::string what = "mirror (" + std::to_string(int(mirror.x)) + "," + std::to_string(int(mirror.y)) +
-                                     "," + std::to_string(int(mirror.z)) + (instanced ? "), instanced" : "), flattened");
+                                     "," + std::to_string(int(mirror.z)) +
+                                     (instanced ? "), instanced" : "), flattened");
             const RenderResult a = render(scene(Vec3(1.f)), params(40, 30, 32, 8));
             const RenderResult m = render(scene(mirror), params(40, 30, 32, 8));
             EXPECT_EQ(count_disagreeing_pixels(a, m, 6.0), 0u) << what;

@@ -61,8 +61,8 @@ RandomScene make_random_scene(uint64_t seed) {
         for (int t = 0; t < tris; ++t) {
             const uint32_t base = uint32_t(positions.size() / 3);
             Vec3 v[3] = {centre + r.vec(size), centre + r.vec(size), centre + r.vec(size)};
-            if (r.chance(0.05f)) v[2] = v[1];                          // zero-area triangle
-            if (r.chance(0.05f)) v[2] = v[0] + (v[1] - v[0]) * 0.5f;   // collinear
+            if (r.chance(0.05f)) v[2] = v[1];                         // zero-area triangle
+            if (r.chance(0.05f)) v[2] = v[0] + (v[1] - v[0]) * 0.5f;  // collinear
             for (const Vec3& p : v) push(positions, p);
             triangles.insert(triangles.end(), {base, base + 1, base + 2});
             tri_material.push_back(uint32_t(r.integer(mat_count)));
@@ -73,7 +73,8 @@ RandomScene make_random_scene(uint64_t seed) {
         const int copies = r.chance(0.3f) ? 2 + r.integer(5) : 1;
         for (int c = 0; c < copies; ++c) {
             instance_mesh.push_back(uint32_t(m));
-            const Vec3 s(r.chance(0.2f) ? -r.range(0.5f, 2.f) : r.range(0.5f, 2.f), r.range(0.5f, 2.f), r.range(0.5f, 2.f));
+            const Vec3 s(r.chance(0.2f) ? -r.range(0.5f, 2.f) : r.range(0.5f, 2.f), r.range(0.5f, 2.f),
+                         r.range(0.5f, 2.f));
             const Vec3 t = c == 0 ? Vec3(0.f) : r.vec(scale);
             transforms.insert(transforms.end(), {s.x, 0, 0, t.x, 0, s.y, 0, t.y, 0, 0, s.z, t.z, 0, 0, 0, 1});
         }
@@ -85,18 +86,30 @@ RandomScene make_random_scene(uint64_t seed) {
         light_type.push_back(uint32_t(r.integer(int(light_type_names().size()))));
         std::vector<float> row(lcols, 0.f);
         const float strength = r.log_uniform(1e-3f, 1e6f);
-        row[0] = strength * r.uniform(); row[1] = strength * r.uniform(); row[2] = strength * r.uniform();
+        row[0] = strength * r.uniform();
+        row[1] = strength * r.uniform();
+        row[2] = strength * r.uniform();
         const Vec3 p = r.chance(0.2f) ? Vec3(positions[0], positions[1], positions[2]) : r.vec(scale);  // on a surface
         const Vec3 d = r.unit();
-        row[3] = p.x; row[4] = p.y; row[5] = p.z;
-        row[6] = d.x; row[7] = d.y; row[8] = d.z;
-        const Vec3 u = r.unit() * (scale * r.log_uniform(1e-4f, 1.f)), v = normalize(cross(d, u)) * (scale * r.log_uniform(1e-4f, 1.f));
-        row[9] = u.x; row[10] = u.y; row[11] = u.z; row[12] = v.x; row[13] = v.y; row[14] = v.z;
+        row[3] = p.x;
+        row[4] = p.y;
+        row[5] = p.z;
+        row[6] = d.x;
+        row[7] = d.y;
+        row[8] = d.z;
+        const Vec3 u = r.unit() * (scale * r.log_uniform(1e-4f, 1.f)),
+                   v = normalize(cross(d, u)) * (scale * r.log_uniform(1e-4f, 1.f));
+        row[9] = u.x;
+        row[10] = u.y;
+        row[11] = u.z;
+        row[12] = v.x;
+        row[13] = v.y;
+        row[14] = v.z;
         row[15] = r.chance(0.5f) ? 0.f : scale * r.log_uniform(1e-5f, 0.1f);  // radius
-        row[16] = r.range(0.f, k_pi);                                        // spot size
-        row[17] = r.uniform();                                               // spot blend
-        row[18] = r.chance(0.5f) ? 0.f : r.range(0.f, 3.f);                  // sun angle
-        row[19] = r.chance(0.5f) ? 1.f : 0.f;                                // ellipse
+        row[16] = r.range(0.f, k_pi);                                         // spot size
+        row[17] = r.uniform();                                                // spot blend
+        row[18] = r.chance(0.5f) ? 0.f : r.range(0.f, 3.f);                   // sun angle
+        row[19] = r.chance(0.5f) ? 1.f : 0.f;                                 // ellipse
         lights.insert(lights.end(), row.begin(), row.end());
     }
 
@@ -106,7 +119,7 @@ RandomScene make_random_scene(uint64_t seed) {
     const Vec3 up = cross(right, forward);
     // Blender cameras look down −Z with +Y up: columns are (right, up, −forward).
     const float camera[16] = {right.x, up.x, -forward.x, eye.x, right.y, up.y, -forward.y, eye.y,
-                              right.z, up.z, -forward.z, eye.z, 0, 0, 0, 1};
+                              right.z, up.z, -forward.z, eye.z, 0,       0,    0,          1};
 
     RandomScene out;
     SceneArrays& a = out.arrays;

@@ -69,9 +69,9 @@ TEST(ShadingNormals, LowPolySmoothObjectsShadeSmoothlyOutsideTheTerminatorBand) 
         Vec3 to_sun;
     };
     const float albedo = 0.8f, irradiance = 3.f;
-    for (const Shape& s : {Shape{"sphere 12x6", 0, 12, 6, Vec3(1.f, 0.3f, 0.2f)},
-                           Shape{"sphere 8x4", 0, 8, 4, Vec3(1.f, -0.5f, 0.6f)},
-                           Shape{"cylinder 10", 1, 10, 0, Vec3(1.f, 0.2f, 0.5f)}}) {
+    for (const Shape& s :
+         {Shape{"sphere 12x6", 0, 12, 6, Vec3(1.f, 0.3f, 0.2f)}, Shape{"sphere 8x4", 0, 8, 4, Vec3(1.f, -0.5f, 0.6f)},
+          Shape{"cylinder 10", 1, 10, 0, Vec3(1.f, 0.2f, 0.5f)}}) {
         ShadedBuilder b;
         const uint32_t m = b.add_material(Color(albedo), Color(0.f));
         const uint32_t mesh = s.kind == 0 ? b.add_smooth_sphere(1.f, s.segments, s.rings, m)
@@ -203,10 +203,11 @@ TEST(ShadingNormals, NoLightLeaksIntoAClosedSmoothShadedEnclosure) {
             for (int with_walls = 1; with_walls >= 0; --with_walls) {
                 ShadedBuilder b;
                 const uint32_t m = b.add_material(Color(0.8f), Color(0.f));
-                b.add_closure(m, closure, {{"color_r", 0.8f}, {"color_g", 0.8f}, {"color_b", 0.8f}, {"roughness", 0.2f}});
+                b.add_closure(m, closure,
+                              {{"color_r", 0.8f}, {"color_g", 0.8f}, {"color_b", 0.8f}, {"roughness", 0.2f}});
                 if (with_walls) {
-                    const uint32_t mesh = enclosure == 0 ? b.add_box(Vec3(-1.f), Vec3(1.f), m, true)
-                                                         : b.add_smooth_sphere(1.f, 8, 4, m);
+                    const uint32_t mesh =
+                        enclosure == 0 ? b.add_box(Vec3(-1.f), Vec3(1.f), m, true) : b.add_smooth_sphere(1.f, 8, 4, m);
                     b.add_instance(mesh);
                 }
                 // A floor inside: lit through the walls' gaps if there were any.
@@ -214,7 +215,8 @@ TEST(ShadingNormals, NoLightLeaksIntoAClosedSmoothShadedEnclosure) {
                 b.add_point_light(Vec3(0.3f, 1.6f, -0.2f), Color(300.f));
                 b.add_point_light(Vec3(-1.05f, 0.f, 0.f), Color(100.f), 0.02f);  // just outside a wall
                 add_sun(b, Vec3(0.3f, 1.f, 0.4f), 5.f);
-                b.add_area_light(Vec3(0.f, 0.f, -1.3f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0), Vec3(0, 0, 1.f), Color(200.f));
+                b.add_area_light(Vec3(0.f, 0.f, -1.3f), Vec3(1.f, 0, 0), Vec3(0, 1.f, 0), Vec3(0, 0, 1.f),
+                                 Color(200.f));
                 b.world_color = {1.f, 1.f, 1.f};
                 const RenderResult r = render(b.arrays(), params(32, 24, 16, 8));
                 const std::string what = std::string(enclosure ? "sphere" : "box") + ", " + closure;

@@ -13,9 +13,9 @@ namespace candela {
 
 const char* world_kind_name(WorldKind k) {
     switch (k) {
-        case WorldKind::Constant: return "constant";
-        case WorldKind::Textured: return "textured";
-        default: return "none";
+    case WorldKind::Constant: return "constant";
+    case WorldKind::Textured: return "textured";
+    default: return "none";
     }
 }
 

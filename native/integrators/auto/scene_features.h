@@ -24,15 +24,15 @@ const char* world_kind_name(WorldKind k);
 struct SceneFeatures {
     // Lights (the LightSet: zero-strength Blender lights are already dropped at load; emissive triangles count one
     // per object here, the LightSet has one per triangle).
-    int light_count = 0;         // entries of the LightSet
-    int unhittable_lights = 0;   // point, spot and sun lights (soft or not): no ray ever hits them
-    int delta_lights = 0;        // of those, the ones of zero radius/angle (a delta in position or direction)
-    int small_emitters = 0;      // area lights and emissive objects under k_small_light_area_fraction·πR²
-    int large_emitters = 0;      // the other area lights and emissive objects
-    int zero_power_lights = 0;   // LightSet entries of zero power (a black emissive triangle, say)
-    double total_power = 0.0;       // Σ light_power over the LightSet (luminance-weighted W, as selection sees it)
-    double unhittable_power = 0.0;  // the point/spot/sun share of it
-    double small_power = 0.0;       // the small emitters' share of it
+    int light_count = 0;                // entries of the LightSet
+    int unhittable_lights = 0;          // point, spot and sun lights (soft or not): no ray ever hits them
+    int delta_lights = 0;               // of those, the ones of zero radius/angle (a delta in position or direction)
+    int small_emitters = 0;             // area lights and emissive objects under k_small_light_area_fraction·πR²
+    int large_emitters = 0;             // the other area lights and emissive objects
+    int zero_power_lights = 0;          // LightSet entries of zero power (a black emissive triangle, say)
+    double total_power = 0.0;           // Σ light_power over the LightSet (luminance-weighted W, as selection sees it)
+    double unhittable_power = 0.0;      // the point/spot/sun share of it
+    double small_power = 0.0;           // the small emitters' share of it
     WorldKind world = WorldKind::None;  // constant: a background colour (not a light); textured: a WorldLight
 
     // Surfaces: area of the triangles whose material can have each lobe (a material with several lobes counts in

@@ -26,8 +26,8 @@ void publish_strategy_images(const StrategyImages& strategies, RenderContext& ct
 /// with t = 1 dropped (as for the orthographic pinhole): that variant has no agreement test for a panorama.
 void check_camera(const Params& params) {
     if (params.get<std::string>("camera_type", "PERSP") == "PANO")
-        throw InvalidParameter("integrator BDPT: " + Camera::panoramic_not_connectable_message(
-                                   params.get<std::string>("panorama_type", "FISHEYE_EQUISOLID")));
+        throw InvalidParameter("integrator BDPT: " + Camera::panoramic_not_connectable_message(params.get<std::string>(
+                                                         "panorama_type", "FISHEYE_EQUISOLID")));
 }
 
 class BdptIntegrator final : public Integrator {
@@ -42,8 +42,9 @@ public:
             throw InvalidParameter("integrator BDPT: " + scene.camera().not_connectable_message());
         const EmitterSet& emitters = scene.emitters();
         if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
-            ctx.log("BDPT: objects hidden from diffuse, glossy or transmission rays are visible to light subpaths and "
-                    "connections (only camera and shadow visibility are honoured)");
+            ctx.log(
+                "BDPT: objects hidden from diffuse, glossy or transmission rays are visible to light subpaths and "
+                "connections (only camera and shadow visibility are honoured)");
         if (!scene.camera().connectable())
             ctx.log("BDPT: " + scene.camera().not_connectable_kind() +
                     " has no light-tracing strategy (t = 1): the other strategies render the image");

@@ -5,10 +5,11 @@
 namespace candela {
 
 ParamSpec BdptSettings::mis_spec() {
-    return enum_param("bdpt_mis", "Strategy Weights", "POWER",
-                      {{"BALANCE", "Balance", "Balance heuristic over all strategies (Veach 1997, eq. 10.9 with β = 1)"},
-                       {"POWER", "Power", "Power heuristic with exponent 2 over all strategies (Veach 1997, ch. 10)"}},
-                      "How the estimates of all (s, t) strategies of a path are weighted", "Bidirectional");
+    return enum_param(
+        "bdpt_mis", "Strategy Weights", "POWER",
+        {{"BALANCE", "Balance", "Balance heuristic over all strategies (Veach 1997, eq. 10.9 with β = 1)"},
+         {"POWER", "Power", "Power heuristic with exponent 2 over all strategies (Veach 1997, ch. 10)"}},
+        "How the estimates of all (s, t) strategies of a path are weighted", "Bidirectional");
 }
 
 const std::vector<ParamSpec>& BdptSettings::specs() {

@@ -1,6 +1,5 @@
 #include "integrators/bdpt/bdpt_tracer.h"
 
-
 namespace candela {
 
 namespace {
@@ -68,7 +67,8 @@ void all_strategies(const BdptContext& c, Scratch& w, int nz, int ny, PathStats&
     for (const AreaLightHit& a : w.area_hits) {
         const int t = a.segment + 1;
         if (t - 2 > max_depth) continue;
-        const StrategyResult r = evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats);
+        const StrategyResult r =
+            evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats);
         record(r, 0, t);
         emit_checked(r, stats, emit);
     }
@@ -91,13 +91,16 @@ Color BdptTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, 
         if (rec.buffer && !is_black(r.L) && is_finite(r.L) && min_component(r.L) >= 0.f)
             rec.images->record(*rec.buffer, s, t, r.L, r.weight, r.raster, r.splat, sink.x, sink.y);
     };
-    all_strategies(c, w, nz, ny, stats, [&](const Color& weighted, const StrategyResult& r) {
-        if (r.splat) {
-            if (sink.buffer) sink.buffer->add(r.raster, weighted, sink.replicate);
-        } else {
-            L += weighted;
-        }
-    }, record);
+    all_strategies(
+        c, w, nz, ny, stats,
+        [&](const Color& weighted, const StrategyResult& r) {
+            if (r.splat) {
+                if (sink.buffer) sink.buffer->add(r.raster, weighted, sink.replicate);
+            } else {
+                L += weighted;
+            }
+        },
+        record);
     return L;
 }
 
@@ -132,8 +135,9 @@ void BdptTracer::sample_strategy(const Ray& camera_ray, PrimarySampleSampler& u,
     if (s == 0)
         for (const AreaLightHit& a : w.area_hits)
             if (a.segment + 1 == t)
-                emit_checked(evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats),
-                             stats, emit);
+                emit_checked(
+                    evaluate_strategy(c, w.light, 0, w.camera, t, w.camera_numbers, w.light_numbers, &a, stats), stats,
+                    emit);
 }
 
 }  // namespace candela

@@ -28,7 +28,8 @@ public:
         : m_context{scene, emitters, settings} {}
 
     /// The camera sample's radiance (strategies t ≥ 2); the t = 1 strategies are splatted into `sink`.
-    Color Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov, SplatSink sink) const;
+    Color Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov,
+             SplatSink sink) const;
 
     /// One weighted contribution of a bidirectional sample: `L` lands at the camera ray's raster position, or
     /// (splat, t = 1) at `raster`.
@@ -39,7 +40,8 @@ public:
     };
     /// Metropolis (integrators/mlt/): the whole bidirectional sample of primary-sample state `u` (every strategy,
     /// MIS-weighted, as Li), appended to `out`.
-    void sample_all(const Ray& camera_ray, PrimarySampleSampler& u, PathStats& stats, std::vector<Contribution>& out) const;
+    void sample_all(const Ray& camera_ray, PrimarySampleSampler& u, PathStats& stats,
+                    std::vector<Contribution>& out) const;
     /// Multiplexed Metropolis: strategy (s, t) alone (subpaths of exactly s and t vertices), its MIS-weighted
     /// contribution appended to `out` (s = 0 may give two: the emitter z[t − 1] and an area light passed before it).
     void sample_strategy(const Ray& camera_ray, PrimarySampleSampler& u, int s, int t, PathStats& stats,

@@ -23,13 +23,13 @@ enum class VertexKind : uint8_t { Camera, Light, Surface };
 struct PathVertex {
     VertexKind kind = VertexKind::Surface;
     Vec3 p{0.f};
-    Vec3 ng{0.f};          // unit geometric normal (winding side); zero for points and the camera
-    Vec3 w{0.f};           // unit direction toward the previous vertex of its own subpath
-    Color beta{0.f};       // the subpath's throughput arriving at this vertex
+    Vec3 ng{0.f};     // unit geometric normal (winding side); zero for points and the camera
+    Vec3 w{0.f};      // unit direction toward the previous vertex of its own subpath
+    Color beta{0.f};  // the subpath's throughput arriving at this vertex
     float pdf_fwd = 0.f, pdf_rev = 0.f;
-    bool delta = false;    // left by a delta lobe (connections through it are impossible)
-    bool infinite = false; // a distant light or the world seen by an escaped ray: `w` is the direction toward it,
-                           // not toward the previous vertex
+    bool delta = false;     // left by a delta lobe (connections through it are impossible)
+    bool infinite = false;  // a distant light or the world seen by an escaped ray: `w` is the direction toward it,
+                            // not toward the previous vertex
     // Light vertices: the emitter (EmitterSet index) and the radiance it sends along `d_out` (set when known).
     int32_t emitter = -1;
     Color Le{0.f};

@@ -64,7 +64,8 @@ float Densities::emission(const PathVertex& light, const PathVertex& next) const
     const Vec3 d = direction(light, next);
     const EmitterPoint pt = emitter_point(light, d);
     float pos = 0.f, dir = 0.f;
-    light_pdf_le(m_c.emitters[size_t(e)], light.infinite ? next.p : light.p, pt.n, d, m_c.emitters.bounds(), &pos, &dir);
+    light_pdf_le(m_c.emitters[size_t(e)], light.infinite ? next.p : light.p, pt.n, d, m_c.emitters.bounds(), &pos,
+                 &dir);
     if (light.infinite) return pos * (next.on_surface() ? std::fabs(dot(next.ng, d)) : 1.f);  // parallel rays
     return solid_angle_to_area(light, next, dir);
 }
@@ -78,12 +79,14 @@ float Densities::origin(const PathVertex& v, const PathVertex& toward) const {
     return m_c.emitters.pmf(uint32_t(e)) * (v.infinite ? dir : pos);
 }
 
-float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, int s, const std::vector<PathVertex>& z, int t,
-                      const PathVertex* sampled, const PathVertex* area) {
+float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, int s, const std::vector<PathVertex>& z,
+                      int t, const PathVertex* sampled, const PathVertex* area) {
     if (s + t == 2) return 1.f;  // (0, 2): the only strategy of a two-vertex path (the tracer skips (1, 1))
     const Densities d(c);
     // `sampled` is the fresh vertex of the connection: the camera's for t = 1, else the light's for s = 1.
-    auto Y = [&](int i) -> const PathVertex& { return (t != 1 && s == 1 && i == 0 && sampled) ? *sampled : y[size_t(i)]; };
+    auto Y = [&](int i) -> const PathVertex& {
+        return (t != 1 && s == 1 && i == 0 && sampled) ? *sampled : y[size_t(i)];
+    };
     auto Z = [&](int i) -> const PathVertex& {
         if (t == 1 && i == 0 && sampled) return *sampled;
         if (area && i == t - 1) return *area;
@@ -154,7 +157,8 @@ Color emitted(const BdptContext& c, const PathVertex& v) {
 }  // namespace
 
 StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVertex>& y, int s,
-                                 const std::vector<PathVertex>& z, int t, const std::vector<VertexNumbers>& camera_numbers,
+                                 const std::vector<PathVertex>& z, int t,
+                                 const std::vector<VertexNumbers>& camera_numbers,
                                  const std::vector<VertexNumbers>& light_numbers, const AreaLightHit* area,
                                  PathStats& stats) {
     StrategyResult r;

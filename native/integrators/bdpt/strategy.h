@@ -48,7 +48,9 @@ float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, in
 /// Strategy (s, t) with s light and t camera vertices (s + t ≥ 2, t ≥ 1; for s = 0 the camera vertex t − 1 must be
 /// an emitter). `area` (s = 0 only): the area light hit on the camera subpath's segment t − 1 instead of its vertex.
 StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVertex>& y, int s,
-                                 const std::vector<PathVertex>& z, int t, const std::vector<VertexNumbers>& camera_numbers,
-                                 const std::vector<VertexNumbers>& light_numbers, const AreaLightHit* area, PathStats& stats);
+                                 const std::vector<PathVertex>& z, int t,
+                                 const std::vector<VertexNumbers>& camera_numbers,
+                                 const std::vector<VertexNumbers>& light_numbers, const AreaLightHit* area,
+                                 PathStats& stats);
 
 }  // namespace candela

@@ -25,7 +25,11 @@ double StrategyImages::bytes_per_pixel(int max_depth) {
 }
 
 StrategyImages::StrategyImages(int max_depth, int width, int height, int origin_x, int origin_y)
-    : m_max_depth(max_depth), m_width(width), m_height(height), m_origin_x(origin_x), m_origin_y(origin_y),
+    : m_max_depth(max_depth),
+      m_width(width),
+      m_height(height),
+      m_origin_x(origin_x),
+      m_origin_y(origin_y),
       m_ids(strategies(max_depth)) {
     m_first.assign(size_t(max_depth) + 1, -1);
     for (size_t i = 0; i < m_ids.size(); ++i)

@@ -58,7 +58,7 @@ public:
 private:
     int m_max_depth, m_width, m_height, m_origin_x, m_origin_y;
     std::vector<StrategyId> m_ids;
-    std::vector<int> m_first;  // m_first[depth]: index of (0, depth + 2)
+    std::vector<int> m_first;   // m_first[depth]: index of (0, depth + 2)
     std::vector<double> m_sum;  // image-major, then pixel, then RGB
     double m_samples = 0.0;
 };

@@ -35,8 +35,8 @@ void make_surface(PathVertex& v, const Scene& scene, const SurfaceHit& hit, cons
 
 template <class S>
 int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVertex>& z,
-                std::vector<VertexNumbers>& numbers, std::vector<AreaLightHit>& area_hits, PathStats& stats, float* alpha,
-                AovSample* aov, int limit) {
+                std::vector<VertexNumbers>& numbers, std::vector<AreaLightHit>& area_hits, PathStats& stats,
+                float* alpha, AovSample* aov, int limit) {
     const Scene& scene = c.scene;
     const BdptSettings& cfg = c.settings;
     const LightSet& lights = scene.lights();
@@ -102,8 +102,8 @@ int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVerte
         ++n;
         if (n >= c.max_camera()) return n;
         const bool roulette_here = cfg.rr_mode != RouletteMode::Off && bounce + 1 >= cfg.rr_start_bounce;
-        const BounceSample u = draw_bounce(sampler, bounce,
-                                           k_need_light_select | k_need_light | k_need_lobe | (roulette_here ? k_need_roulette : 0u));
+        const BounceSample u = draw_bounce(
+            sampler, bounce, k_need_light_select | k_need_light | k_need_lobe | (roulette_here ? k_need_roulette : 0u));
         VertexNumbers& num = numbers[n - 1];
         num.u_select = u.light_select;
         num.u_point = u.light;
@@ -115,8 +115,9 @@ int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVerte
         if (s.bsdf.is_transmission()) eta_scale *= s.bsdf.eta * s.bsdf.eta;
         if (roulette_here) {
             const float q = cfg.rr_mode == RouletteMode::Albedo ? min_num(1.f, max_component(s.weight))
-                            : cfg.rr_mode == RouletteMode::SqrtThroughput ? arrival_survival(beta, eta_scale)
-                                                                           : min_num(1.f, max_component(beta) * eta_scale);
+                            : cfg.rr_mode == RouletteMode::SqrtThroughput
+                                ? arrival_survival(beta, eta_scale)
+                                : min_num(1.f, max_component(beta) * eta_scale);
             if (!(q > 0.f) || u.roulette >= q) return n;
             beta /= q;
         }
@@ -168,15 +169,17 @@ int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std
         PathVertex& v = y[n];
         make_surface(v, scene, hit, ray, beta);
         // From the positions, as the connections recompute them (see camera_walk).
-        if (n == 1) v.pdf_fwd = d.emission(y[0], v);  // a distant light: the disk's density across the rays
-        else v.pdf_fwd = y[n - 1].delta ? 0.f : d.light_side(y[n - 1], &y[n - 2], v);
+        if (n == 1)
+            v.pdf_fwd = d.emission(y[0], v);  // a distant light: the disk's density across the rays
+        else
+            v.pdf_fwd = y[n - 1].delta ? 0.f : d.light_side(y[n - 1], &y[n - 2], v);
         if (n >= 2) y[n - 2].pdf_rev = y[n - 1].delta ? 0.f : d.camera_side(y[n - 1], &v, y[n - 2]);
         if (depth == 1) beta_ref = max_component(beta);
         ++n;
         const bool last = n >= limit;
         const bool roulette_here = !last && cfg.rr_mode != RouletteMode::Off && depth >= cfg.rr_start_bounce;
-        const BounceSample u = draw_bounce(sampler, dim + depth,
-                                           k_need_light | k_need_lobe | (roulette_here ? k_need_roulette : 0u));
+        const BounceSample u =
+            draw_bounce(sampler, dim + depth, k_need_light | k_need_lobe | (roulette_here ? k_need_roulette : 0u));
         numbers[n - 1].u_point = u.light;  // the lens sample of a connection to the camera (t = 1)
         if (last) return n;
         const VertexBsdf::Sample s = v.bsdf->sample_light(v.w, u.bsdf, u.lobe);
@@ -186,9 +189,9 @@ int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std
         if (s.bsdf.is_transmission() && s.bsdf.eta > 0.f) eta_scale /= s.bsdf.eta * s.bsdf.eta;
         if (roulette_here) {
             const Color relative = beta * (eta_scale / beta_ref);
-            const float q = cfg.rr_mode == RouletteMode::Albedo ? min_num(1.f, max_component(s.weight))
+            const float q = cfg.rr_mode == RouletteMode::Albedo           ? min_num(1.f, max_component(s.weight))
                             : cfg.rr_mode == RouletteMode::SqrtThroughput ? arrival_survival(relative, 1.f)
-                                                                           : min_num(1.f, max_component(relative));
+                                                                          : min_num(1.f, max_component(relative));
             if (!(q > 0.f) || u.roulette >= q) return n;
             beta /= q;
         }
@@ -205,9 +208,9 @@ int camera_subpath(const BdptContext& c, const Ray& ray, Sampler& sampler, std::
                    std::vector<VertexNumbers>& numbers, std::vector<AreaLightHit>& area_hits, PathStats& stats,
                    float* alpha, AovSample* aov) {
     area_hits.clear();
-    return std::visit([&](auto& s) {
-        return camera_walk(c, ray, s, z, numbers, area_hits, stats, alpha, aov, c.max_camera());
-    }, sampler);
+    return std::visit(
+        [&](auto& s) { return camera_walk(c, ray, s, z, numbers, area_hits, stats, alpha, aov, c.max_camera()); },
+        sampler);
 }
 
 int light_subpath(const BdptContext& c, Sampler& sampler, std::vector<PathVertex>& y,

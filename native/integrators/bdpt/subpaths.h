@@ -31,8 +31,8 @@ struct BdptContext {
     const Scene& scene;
     const EmitterSet& emitters;
     const BdptSettings& settings;
-    int max_camera() const { return settings.max_bounces + 3; }  // z₀, max_bounces + 1 scattering, an emitter
-    int max_light() const { return settings.max_bounces + 2; }   // y₀ and max_bounces + 1 scattering
+    int max_camera() const { return settings.max_bounces + 3; }        // z₀, max_bounces + 1 scattering, an emitter
+    int max_light() const { return settings.max_bounces + 2; }         // y₀ and max_bounces + 1 scattering
     int light_dim_bounce() const { return settings.max_bounces + 2; }  // after the camera subpath's dimensions
     /// How far beyond the frame camera rays reach (filter importance sampling: half the filter's support), pixels.
     float camera_margin() const { return 0.5f * settings.pixel.filter.support(); }
@@ -52,8 +52,8 @@ int camera_subpath(const BdptContext& c, const Ray& ray, Sampler& sampler, std::
                    float* alpha, AovSample* aov);
 
 /// Fills y[0 .. n) with a light subpath, returns n (0: no emitter could be sampled).
-int light_subpath(const BdptContext& c, Sampler& sampler, std::vector<PathVertex>& y, std::vector<VertexNumbers>& numbers,
-                  PathStats& stats);
+int light_subpath(const BdptContext& c, Sampler& sampler, std::vector<PathVertex>& y,
+                  std::vector<VertexNumbers>& numbers, PathStats& stats);
 
 /// The same walks driven by Metropolis' primary-sample state (integrators/mlt/), with at most `max_vertices`
 /// vertices (multiplexed MLT builds a subpath of exactly the length its strategy needs). Its last vertex has its

@@ -32,23 +32,23 @@ struct DirectLightRules {
     LightSampling light_sampling = LightSampling::Mis;
     MisHeuristic mis_heuristic = MisHeuristic::Power;
     LightPdfMode light_pdf = LightPdfMode::SolidAngle;
-    int light_samples = 1;       // k shadow rays per vertex
+    int light_samples = 1;  // k shadow rays per vertex
     float ward_threshold = 0.05f;
 };
 
 /// What a path's last scattering leaves for MIS at the emitter its ray finds.
 struct EmissionOrigin {
-    bool specular = true;         // camera ray or delta scatter: emission counts with weight 1
-    float bsdf_pdf = 0.f;         // density of the strategy that produced the ray
-    LightSampleContext point;     // the vertex the ray left, as light sampling saw it
-    int ward_tested = 0;          // WARD: how many candidates that vertex shadow-tested (its MIS realisation)
+    bool specular = true;      // camera ray or delta scatter: emission counts with weight 1
+    float bsdf_pdf = 0.f;      // density of the strategy that produced the ray
+    LightSampleContext point;  // the vertex the ray left, as light sampling saw it
+    int ward_tested = 0;       // WARD: how many candidates that vertex shadow-tested (its MIS realisation)
 };
 
 /// Density with which next-event estimation at `origin` would have produced direction d toward light `index`
 /// hit at distance t (0 where it could not: BSDF_ONLY, or after a delta scatter).
 inline __attribute__((always_inline)) float nee_density(const DirectLightRules& rules, const LightSampler& sampler,
-                                                         const LightSet& lights, const EmissionOrigin& origin,
-                                                         uint32_t index, const Vec3& d, float t) {
+                                                        const LightSet& lights, const EmissionOrigin& origin,
+                                                        uint32_t index, const Vec3& d, float t) {
     if (rules.light_sampling == LightSampling::BsdfOnly || origin.specular) return 0.f;
     const WardLightSampler* ward = sampler.ward();
     const float pmf = ward ? ward->adaptive_pmf(origin.point, index, size_t(origin.ward_tested))
@@ -58,7 +58,7 @@ inline __attribute__((always_inline)) float nee_density(const DirectLightRules& 
 
 /// MIS weight of emission found by a BSDF-sampled ray, against next-event estimation of density light_pdf.
 inline __attribute__((always_inline)) float emission_weight(const DirectLightRules& rules, const EmissionOrigin& origin,
-                                                             float light_pdf) {
+                                                            float light_pdf) {
     if (origin.specular) return 1.f;
     if (rules.light_sampling == LightSampling::LightOnly) return light_pdf > 0.f ? 0.f : 1.f;
     if (rules.light_sampling == LightSampling::Mis) return mis_weight(rules.mis_heuristic, origin.bsdf_pdf, light_pdf);
@@ -80,9 +80,9 @@ struct DirectLightSample {
 /// point (shadow_ray_origin).
 template <class Weight>
 inline __attribute__((always_inline)) DirectLightSample sample_direct_light_weighted(
-    const Scene& scene, const DirectLightRules& rules, const SurfaceHit& hit, const SurfaceVertex& v, SpawnPoints& spawn,
-    const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local, const Color& beta, uint32_t li, float pmf,
-    Vec2 u, Weight&& weight, uint64_t& rays, const ShadowRayInputs* shadow = nullptr) {
+    const Scene& scene, const DirectLightRules& rules, const SurfaceHit& hit, const SurfaceVertex& v,
+    SpawnPoints& spawn, const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local, const Color& beta,
+    uint32_t li, float pmf, Vec2 u, Weight&& weight, uint64_t& rays, const ShadowRayInputs* shadow = nullptr) {
     DirectLightSample out;
     const LightSample ls = light_sample_li(scene.lights()[li], ctx, u, rules.light_pdf);
     if (!ls.valid() || (rules.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return out;
@@ -119,9 +119,10 @@ inline __attribute__((always_inline)) DirectLightSample sample_direct_light_weig
 /// (for MIS); `rays` counts the shadow ray; `shadow` as for sample_direct_light_weighted.
 template <class ContinuationPdf>
 inline __attribute__((always_inline)) DirectLightSample sample_direct_light(
-    const Scene& scene, const DirectLightRules& rules, const SurfaceHit& hit, const SurfaceVertex& v, SpawnPoints& spawn,
-    const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local, const Color& beta, uint32_t li, float pmf,
-    Vec2 u, ContinuationPdf&& continuation_pdf, uint64_t& rays, const ShadowRayInputs* shadow = nullptr) {
+    const Scene& scene, const DirectLightRules& rules, const SurfaceHit& hit, const SurfaceVertex& v,
+    SpawnPoints& spawn, const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local, const Color& beta,
+    uint32_t li, float pmf, Vec2 u, ContinuationPdf&& continuation_pdf, uint64_t& rays,
+    const ShadowRayInputs* shadow = nullptr) {
     return sample_direct_light_weighted(
         scene, rules, hit, v, spawn, ctx, bsdf, wo_local, beta, li, pmf, u,
         [&](const LightSample& ls, const Vec3& wi_local, float density) __attribute__((always_inline)) {
@@ -143,9 +144,9 @@ inline __attribute__((always_inline)) DirectLightSample sample_direct_light(
 /// stays unbiased (optional stopping), and the tail estimate uses fresh numbers.
 template <class Estimate>
 inline __attribute__((always_inline)) int next_event_estimation(const DirectLightRules& rules,
-                                                                 const LightSampler& sampler, const LightSet& lights,
-                                                                 const LightSampleContext& ctx, float u_select,
-                                                                 Vec2 u_light, Estimate&& estimate) {
+                                                                const LightSampler& sampler, const LightSet& lights,
+                                                                const LightSampleContext& ctx, float u_select,
+                                                                Vec2 u_light, Estimate&& estimate) {
     const uint32_t k = uint32_t(rules.light_samples);
     if (const WardLightSampler* ward = sampler.ward()) {
         const WardList list = ward->candidates(ctx);

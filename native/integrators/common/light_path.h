@@ -24,8 +24,8 @@ namespace candela {
 struct LightPathStart {
     Ray ray;
     EmissionSample emission;  // what the emitter sampled (point, direction, densities)
-    Color beta{0.f};        // the flux weight β₀
-    uint32_t emitter = 0;   // the emitter's index in the EmitterSet
+    Color beta{0.f};          // the flux weight β₀
+    uint32_t emitter = 0;     // the emitter's index in the EmitterSet
     bool valid = false;
 };
 
@@ -49,8 +49,8 @@ inline LightPathStart start_light_path(const EmitterSet& emitters, float u_selec
 /// The ray leaving `hit` along unit w, from the origin offset to the side w leaves by.
 inline Ray ray_leaving(const SurfaceHit& hit, const Vec3& w) {
     const float cos_g = dot(w, hit.ng);
-    return Ray{offset_ray_origin(hit.p, cos_g > 0.f ? hit.ng : -hit.ng), w, 0.f,
-               std::numeric_limits<float>::infinity(), k_ray_all};
+    return Ray{offset_ray_origin(hit.p, cos_g > 0.f ? hit.ng : -hit.ng), w, 0.f, std::numeric_limits<float>::infinity(),
+               k_ray_all};
 }
 
 /// A light path's survival probability after a scattering with sample weight `weight` (f·|cos|/p), its throughput

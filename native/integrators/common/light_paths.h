@@ -164,13 +164,18 @@ inline void after_scatter(LightPathState& st, const BsdfSample& bs, bool see_thr
         ++st.depth.transmission;
         flags = LightPathInfo::k_transmission;
     } else {
-        if (bs.flags & k_bsdf_diffuse) ++st.depth.diffuse;
-        else ++st.depth.glossy;
+        if (bs.flags & k_bsdf_diffuse)
+            ++st.depth.diffuse;
+        else
+            ++st.depth.glossy;
         flags = LightPathInfo::k_reflection;
     }
-    if (bs.flags & k_bsdf_diffuse) flags |= LightPathInfo::k_diffuse;
-    else if (bs.flags & k_bsdf_glossy) flags |= LightPathInfo::k_glossy;
-    else flags |= LightPathInfo::k_glossy | LightPathInfo::k_singular;
+    if (bs.flags & k_bsdf_diffuse)
+        flags |= LightPathInfo::k_diffuse;
+    else if (bs.flags & k_bsdf_glossy)
+        flags |= LightPathInfo::k_glossy;
+    else
+        flags |= LightPathInfo::k_glossy | LightPathInfo::k_singular;
     st.ray_flags = flags;
     if (!bs.is_delta()) st.min_ray_pdf = std::fmin(st.min_ray_pdf, bs.pdf);
     st.transparent_background = st.transparent_background && see_through;

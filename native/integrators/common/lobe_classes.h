@@ -34,8 +34,10 @@ inline float lobe_alpha(const BsdfLobe& lobe) {
             using T = std::decay_t<decltype(l)>;
             if constexpr (std::is_same_v<T, MicrofacetReflection> || std::is_same_v<T, MicrofacetDielectric>)
                 return std::fmin(l.distribution.alpha_x, l.distribution.alpha_y);
-            else if constexpr (std::is_same_v<T, ClearcoatBsdf>) return std::fmax(l.alpha, 1e-3f);
-            else return std::numeric_limits<float>::infinity();
+            else if constexpr (std::is_same_v<T, ClearcoatBsdf>)
+                return std::fmax(l.alpha, 1e-3f);
+            else
+                return std::numeric_limits<float>::infinity();
         },
         lobe);
 }

@@ -17,14 +17,15 @@ inline ParamSpec max_bounces_spec() {
 }
 
 inline ParamSpec rr_mode_spec() {
-    return enum_param("rr_mode", "Russian Roulette", "THROUGHPUT",
-                      {{"OFF", "Off", "No Russian roulette: paths end at Max Bounces only"},
-                       {"THROUGHPUT", "Throughput", "Survival probability from the path throughput"},
-                       {"ALBEDO", "Albedo", "Survival probability from the surface's reflectance"},
-                       {"SQRT_THROUGHPUT", "Square Root Throughput",
-                        "Cycles' rule: on arrival at a vertex, continue with probability √(max throughput); paths live "
-                        "longer than with Throughput. Cycles' Min Light Bounces m matches Russian Roulette From m + 2"}},
-                      "How paths are ended before Max Bounces without bias", "Light Paths");
+    return enum_param(
+        "rr_mode", "Russian Roulette", "THROUGHPUT",
+        {{"OFF", "Off", "No Russian roulette: paths end at Max Bounces only"},
+         {"THROUGHPUT", "Throughput", "Survival probability from the path throughput"},
+         {"ALBEDO", "Albedo", "Survival probability from the surface's reflectance"},
+         {"SQRT_THROUGHPUT", "Square Root Throughput",
+          "Cycles' rule: on arrival at a vertex, continue with probability √(max throughput); paths live "
+          "longer than with Throughput. Cycles' Min Light Bounces m matches Russian Roulette From m + 2"}},
+        "How paths are ended before Max Bounces without bias", "Light Paths");
 }
 
 inline ParamSpec rr_start_bounce_spec() {
@@ -50,17 +51,17 @@ inline ParamSpec mis_heuristic_spec(const char* condition) {
 }
 
 inline ParamSpec light_selection_spec() {
-    return enum_param("light_selection", "Light Selection", "TREE",
-                      {{"ALL", "All", "Estimate every light at every vertex (one shadow ray per light)"},
-                       {"UNIFORM", "Uniform", "Teaching option: pick one light uniformly"},
-                       {"AREA", "Area", "Teaching option: pick one light in proportion to its emitting area"},
-                       {"POWER", "Power", "Pick one light in proportion to its power (Cycles 3.4's rule)"},
-                       {"TREE", "Light Tree",
-                        "Pick one light by a light hierarchy with bounds and orientation cones (favours nearby, facing, "
-                        "bright lights; scales to thousands of emitters)"},
-                       {"WARD", "Ward",
-                        "Pick lights in proportion to their maximum possible contribution at the point (Ward 1991)"}},
-                      "How next-event estimation chooses among many lights", "Light Sampling");
+    return enum_param(
+        "light_selection", "Light Selection", "TREE",
+        {{"ALL", "All", "Estimate every light at every vertex (one shadow ray per light)"},
+         {"UNIFORM", "Uniform", "Teaching option: pick one light uniformly"},
+         {"AREA", "Area", "Teaching option: pick one light in proportion to its emitting area"},
+         {"POWER", "Power", "Pick one light in proportion to its power (Cycles 3.4's rule)"},
+         {"TREE", "Light Tree",
+          "Pick one light by a light hierarchy with bounds and orientation cones (favours nearby, facing, "
+          "bright lights; scales to thousands of emitters)"},
+         {"WARD", "Ward", "Pick lights in proportion to their maximum possible contribution at the point (Ward 1991)"}},
+        "How next-event estimation chooses among many lights", "Light Sampling");
 }
 
 inline ParamSpec ward_threshold_spec() {

@@ -25,10 +25,10 @@ namespace candela {
 
 struct SurfaceVertex {
     Vec3 p;
-    Vec3 ng, ns;           // geometric and shading normals, on the side of w_c
-    Frame frame;           // the shading frame (see above)
-    bool backfacing;       // w_c arrives against the winding normal (glass: from inside)
-    bool shading_frame;    // the frame is built on ns (false: on ng, w_c being below ns)
+    Vec3 ng, ns;         // geometric and shading normals, on the side of w_c
+    Frame frame;         // the shading frame (see above)
+    bool backfacing;     // w_c arrives against the winding normal (glass: from inside)
+    bool shading_frame;  // the frame is built on ns (false: on ng, w_c being below ns)
 
     /// The vertex at `hit` with shading normal `shading_normal` (on the winding side), seen along w_c.
     static inline __attribute__((always_inline)) SurfaceVertex at(const SurfaceHit& hit, const Vec3& shading_normal,

@@ -97,9 +97,9 @@ public:
     }
 
     struct Sample {
-        Vec3 w;           // the sampled direction (world)
+        Vec3 w;             // the sampled direction (world)
         Color weight{0.f};  // the throughput factor over the vertex: f·|w·ng|·(shading correction)/p
-        float pdf = 0.f;  // its density (the discrete probability for a delta lobe)
+        float pdf = 0.f;    // its density (the discrete probability for a delta lobe)
         bool delta = false;
         BsdfSample bsdf;  // the BSDF's own sample (flags, η)
         bool valid() const { return pdf > 0.f && !is_black(weight); }

@@ -21,8 +21,9 @@ public:
         const bool surfaces_needed = m_settings.generator == PathGenerator::SurfaceSampling || m_settings.combine;
         const bool connects = surfaces_needed || m_settings.generator == PathGenerator::SourceShooting;
         if (connects && (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission)))
-            ctx.log(name + ": objects hidden from diffuse, glossy or transmission rays still block and receive the "
-                           "generator's connections (only camera and shadow visibility are honoured)");
+            ctx.log(name +
+                    ": objects hidden from diffuse, glossy or transmission rays still block and receive the "
+                    "generator's connections (only camera and shadow visibility are honoured)");
         std::optional<SurfaceSampler> surfaces;
         if (surfaces_needed) {
             surfaces.emplace(scene, &ctx.cancel);

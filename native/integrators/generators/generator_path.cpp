@@ -17,8 +17,12 @@ constexpr float k_inf = std::numeric_limits<float>::infinity();
 GeneratorTracer::GeneratorTracer(const Scene& scene, const GeneratorSettings& settings,
                                  const LightSampler& light_sampler, const EmitterSet& emitters,
                                  const SurfaceSampler* surfaces)
-    : m_scene(scene), m_settings(settings), m_light_sampler(light_sampler), m_emitters(emitters),
-      m_surfaces(surfaces), m_weights(scene, light_sampler, emitters, surfaces, settings) {
+    : m_scene(scene),
+      m_settings(settings),
+      m_light_sampler(light_sampler),
+      m_emitters(emitters),
+      m_surfaces(surfaces),
+      m_weights(scene, light_sampler, emitters, surfaces, settings) {
     m_light_only = settings.direct;
     m_light_only.light_sampling = LightSampling::LightOnly;
     for (uint32_t k = 0; k < scene.materials().size(); ++k)
@@ -83,7 +87,8 @@ bool GeneratorPath::trace_emission(const Ray& ray, const Color& beta, const RayO
             const int index = lights.world_light();
             m_L += beta * world->Le(ray.d) * emitter_weight(origin, index, index, ray.d, k_inf, Vec3(0.f));
         } else if (!is_black(lights.background())) {
-            m_L += beta * lights.background() * emitter_weight(origin, -1, m_t.m_emitters.world(), ray.d, k_inf, Vec3(0.f));
+            m_L += beta * lights.background() *
+                   emitter_weight(origin, -1, m_t.m_emitters.world(), ray.d, k_inf, Vec3(0.f));
         }
         return false;
     }
@@ -124,8 +129,10 @@ void GeneratorPath::receiver_walk(Ray ray, Color beta, int n, RayOrigin origin, 
         next_origin.e.ward_tested = ward_tested;
         next_origin.from = hit.primitive;
         if (!bs.is_delta()) {  // left the receiver by a non-delta lobe: the generator's or a delta chain's light
-            if (m_cfg.generator == PathGenerator::ReceiverGathering) gather_walk(next, next_beta, n + 1, next_origin, r);
-            else passed_vertex(next, next_beta, n + 1, next_origin, &r, true);
+            if (m_cfg.generator == PathGenerator::ReceiverGathering)
+                gather_walk(next, next_beta, n + 1, next_origin, r);
+            else
+                passed_vertex(next, next_beta, n + 1, next_origin, &r, true);
             return;
         }
         ray = next;
@@ -146,7 +153,8 @@ void GeneratorPath::at_receiver(const Receiver& r, const SurfaceHit& hit, const 
     if (!lights.empty()) {  // D(x): next-event estimation, MIS against the BSDF ray (common/direct_light.h)
         const LightSampleContext ctx{hit.p, v.ns};
         *ward_tested = next_event_estimation(
-            m_cfg.direct, m_t.m_light_sampler, lights, ctx, u.light_select, u.light, [&](uint32_t li, float pmf, Vec2 u_li) {
+            m_cfg.direct, m_t.m_light_sampler, lights, ctx, u.light_select, u.light,
+            [&](uint32_t li, float pmf, Vec2 u_li) {
                 const DirectLightSample d = sample_direct_light(
                     scene, m_cfg.direct, hit, v, spawn, ctx, bsdf, wo_local, r.beta, li, pmf, u_li,
                     [&](const Vec3& wi_local) { return bsdf.pdf(wo_local, wi_local); }, m_stats.rays);
@@ -179,8 +187,9 @@ void GeneratorPath::gathered_direct(const VertexBsdf& z, const Vec3& w_c, const 
                                   scene, m_t.m_light_only, hit, v, spawn, ctx, bsdf, wo_local, beta, li, pmf, u_li,
                                   [&](const LightSample& ls, const Vec3&, float) {
                                       if (!one_bounce.x) return 1.f;
-                                      return m_t.m_weights.weight(one_bounce.generator, *one_bounce.x, one_bounce.wo_x,
-                                                                  z, one_bounce_light_of_sample(lights, li, ls.wi, ls.dist));
+                                      return m_t.m_weights.weight(
+                                          one_bounce.generator, *one_bounce.x, one_bounce.wo_x, z,
+                                          one_bounce_light_of_sample(lights, li, ls.wi, ls.dist));
                                   },
                                   m_stats.rays);
                               m_L += d.contribution;
@@ -203,8 +212,8 @@ void GeneratorPath::passed_vertex(const Ray& ray, const Color& beta, int n, cons
     const Vec3 wo_local = v.frame.to_local(wo);
     SpawnPoints spawn(hit.p, v.ng);
     const BounceSample u = draw(slot(n, 0), k_need_light_select | k_need_light | k_need_lobe);
-    const OneBounceRef ob = rg_one_bounce ? OneBounceRef{r->vertex, r->wo, &vb, PathGenerator::ReceiverGathering}
-                                          : OneBounceRef{};
+    const OneBounceRef ob =
+        rg_one_bounce ? OneBounceRef{r->vertex, r->wo, &vb, PathGenerator::ReceiverGathering} : OneBounceRef{};
     if (rg_one_bounce && bsdf.has_non_delta()) gathered_direct(vb, wo, v, spawn, beta, u, ob);
     const BsdfSample bs = bsdf.sample(wo_local, u.bsdf, u.lobe);
     if (!bs.valid() || is_black(bs.f)) return;
@@ -255,16 +264,16 @@ void GeneratorPath::gather_walk(Ray ray, Color beta, int n, RayOrigin origin, co
         const Vec3 wo_local = v.frame.to_local(wo);
         SpawnPoints spawn(hit.p, v.ng);
         const bool roulette_here = cfg.rr_mode != RouletteMode::Off && n + 1 >= cfg.rr_start_bounce;
-        const BounceSample u = draw(slot(n, 0), k_need_light_select | k_need_light | k_need_lobe |
-                                                    (roulette_here ? k_need_roulette : 0u));
+        const BounceSample u =
+            draw(slot(n, 0), k_need_light_select | k_need_light | k_need_lobe | (roulette_here ? k_need_roulette : 0u));
         const bool arrival = roulette_here && cfg.rr_mode == RouletteMode::SqrtThroughput;
         if (arrival) {
             const float q = arrival_survival(beta, eta_scale);
             if (!(q > 0.f) || u.roulette >= q) return;
             beta /= q;
         }
-        const OneBounceRef ob = first && cfg.combine ? OneBounceRef{r.vertex, r.wo, vb, PathGenerator::ReceiverGathering}
-                                                     : OneBounceRef{};
+        const OneBounceRef ob =
+            first && cfg.combine ? OneBounceRef{r.vertex, r.wo, vb, PathGenerator::ReceiverGathering} : OneBounceRef{};
         if (bsdf.has_non_delta()) gathered_direct(*vb, wo, v, spawn, beta, u, ob);
         const BsdfSample bs = bsdf.sample(wo_local, u.bsdf, u.lobe);
         if (!bs.valid() || is_black(bs.f)) return;
@@ -273,7 +282,8 @@ void GeneratorPath::gather_walk(Ray ray, Color beta, int n, RayOrigin origin, co
         beta *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
         eta_scale *= bs.is_transmission() ? bs.eta * bs.eta : 1.f;
         if (roulette_here && !arrival) {
-            const float q = continuation_survival(cfg.rr_mode, beta, 1, eta_scale, [&] { return bsdf.albedo(wo_local); });
+            const float q =
+                continuation_survival(cfg.rr_mode, beta, 1, eta_scale, [&] { return bsdf.albedo(wo_local); });
             if (!(q > 0.f) || u.roulette >= q) return;
             beta /= q;
         }

@@ -56,7 +56,8 @@ private:
     void receiver_walk(Ray ray, Color beta, int n, RayOrigin origin, bool camera, float* alpha, AovSample* aov);
     void at_receiver(const Receiver& r, const SurfaceHit& hit, const SurfaceVertex& v, SpawnPoints& spawn,
                      const BounceSample& u, int* ward_tested);
-    void passed_vertex(const Ray& ray, const Color& beta, int n, const RayOrigin& origin, const Receiver* r, bool chains);
+    void passed_vertex(const Ray& ray, const Color& beta, int n, const RayOrigin& origin, const Receiver* r,
+                       bool chains);
     void gather_walk(Ray ray, Color beta, int n, RayOrigin origin, const Receiver& r);
     /// Traces `ray` and adds the emission it finds (area lights on the way, the surface it hits, the world).
     /// Returns whether it hit a surface (then *hit is set).

@@ -22,11 +22,12 @@ const std::vector<ParamSpec>& GeneratorSettings::specs() {
                    "Estimate the one-bounce indirect light (light → surface → visible point) by all three path "
                    "generators and weight them by multiple importance sampling; longer paths stay this generator's",
                    "Path Generator"),
-        active_if(enum_param("generators_heuristic", "Generator Weights", "BALANCE",
-                             {{"BALANCE", "Balance", "Balance heuristic over the three generators (Veach 1997, eq. 9.12)"},
-                              {"POWER", "Power", "Power heuristic with exponent 2 over the three generators"}},
-                             "How the three generators' estimates of a one-bounce path are weighted", "Path Generator"),
-                  "generators_mis==True"),
+        active_if(
+            enum_param("generators_heuristic", "Generator Weights", "BALANCE",
+                       {{"BALANCE", "Balance", "Balance heuristic over the three generators (Veach 1997, eq. 9.12)"},
+                        {"POWER", "Power", "Power heuristic with exponent 2 over the three generators"}},
+                       "How the three generators' estimates of a one-bounce path are weighted", "Path Generator"),
+            "generators_mis==True"),
         light_selection_spec(),
         ward_threshold_spec(),
         light_pdf_spec(),

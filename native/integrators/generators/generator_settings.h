@@ -28,9 +28,9 @@ struct GeneratorSettings {
     int max_bounces = 12;
     RouletteMode rr_mode = RouletteMode::Throughput;
     int rr_start_bounce = 3;
-    DirectLightRules direct;                 // next-event estimation at receivers (always with MIS) and gathered points
+    DirectLightRules direct;  // next-event estimation at receivers (always with MIS) and gathered points
     std::string light_selection = "TREE";
-    bool combine = false;                    // generators_mis: the one-bounce term by all three generators, with MIS
+    bool combine = false;  // generators_mis: the one-bounce term by all three generators, with MIS
     MisHeuristic combine_heuristic = MisHeuristic::Balance;
 
     static GeneratorSettings from_params(const Params& params, PathGenerator generator);

@@ -49,10 +49,10 @@ private:
     const EmitterSet& m_emitters;
     const SurfaceSampler* m_surfaces;
     OneBounceWeights m_weights;
-    DirectLightRules m_light_only;     // next-event estimation at gathered points
-    bool m_any_delta = false;          // some material has a delta lobe: delta chains can start anywhere
-    bool m_unsampled_emission = false; // a constant world: emission next-event estimation does not sample
-    int m_source_slot = 0;             // the light path's first sample slot (source shooting)
+    DirectLightRules m_light_only;      // next-event estimation at gathered points
+    bool m_any_delta = false;           // some material has a delta lobe: delta chains can start anywhere
+    bool m_unsampled_emission = false;  // a constant world: emission next-event estimation does not sample
+    int m_source_slot = 0;              // the light path's first sample slot (source shooting)
 };
 
 }  // namespace candela

@@ -15,8 +15,10 @@ OneBounceLight one_bounce_light_of_sample(const LightSet& lights, uint32_t li, c
     y.w = wi;
     y.dist = dist;
     const Light& l = lights[li];
-    if (const auto* area = std::get_if<AreaLight>(&l)) y.n = area->normal;
-    else if (const auto* tri = std::get_if<TriangleLight>(&l)) y.n = tri->normal;
+    if (const auto* area = std::get_if<AreaLight>(&l))
+        y.n = area->normal;
+    else if (const auto* tri = std::get_if<TriangleLight>(&l))
+        y.n = tri->normal;
     return y;
 }
 

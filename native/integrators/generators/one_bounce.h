@@ -30,11 +30,11 @@ namespace candela {
 
 /// The light end of a one-bounce path.
 struct OneBounceLight {
-    int light = -1;       // LightSet index (next-event estimation samples it), or −1
-    int emitter = -1;     // EmitterSet index (emission samples it), or −1
-    Vec3 w{0.f};          // unit direction z → y
-    float dist = 0.f;     // |y − z| (infinity for distant lights)
-    Vec3 n{0.f};          // the emitting surface's unit normal at y (zero for points and distant lights)
+    int light = -1;    // LightSet index (next-event estimation samples it), or −1
+    int emitter = -1;  // EmitterSet index (emission samples it), or −1
+    Vec3 w{0.f};       // unit direction z → y
+    float dist = 0.f;  // |y − z| (infinity for distant lights)
+    Vec3 n{0.f};       // the emitting surface's unit normal at y (zero for points and distant lights)
 };
 
 /// The light end of a next-event sample of light `li` from z (its normal taken from the light's surface).
@@ -44,7 +44,10 @@ class OneBounceWeights {
 public:
     OneBounceWeights(const Scene& scene, const LightSampler& light_sampler, const EmitterSet& emitters,
                      const SurfaceSampler* surfaces, const GeneratorSettings& settings)
-        : m_scene(scene), m_light_sampler(light_sampler), m_emitters(emitters), m_surfaces(surfaces),
+        : m_scene(scene),
+          m_light_sampler(light_sampler),
+          m_emitters(emitters),
+          m_surfaces(surfaces),
           m_settings(settings) {}
 
     /// The weight of `generator`'s estimate of the path y → z → x: x the receiver seen from wo_x, z the surface

@@ -51,7 +51,8 @@ void GeneratorPath::connect_light_path(const Receiver& r, bool one_bounce_only) 
         const VertexBsdf z(scene, lv.hit, lv.w_l, lv.sp);
         const Color f_z = z.f(-w, lv.w_l);
         if (is_black(f_z)) continue;
-        const float g = r.vertex->camera_cosine(r.wo, w) * z.adjoint_factor(-w, lv.w_l) * std::fabs(dot(w, lv.hit.ng)) / d2;
+        const float g =
+            r.vertex->camera_cosine(r.wo, w) * z.adjoint_factor(-w, lv.w_l) * std::fabs(dot(w, lv.hit.ng)) / d2;
         if (!(g > 0.f)) continue;
         ++m_stats.rays;
         if (!surfaces_connect(scene, x, lv.hit)) continue;
@@ -61,7 +62,8 @@ void GeneratorPath::connect_light_path(const Receiver& r, bool one_bounce_only) 
             y.emitter = m_light_origin.emitter;
             y.light = size_t(y.emitter) < scene.lights().size() ? y.emitter : -1;
             y.w = lv.w_l;
-            y.dist = m_light_origin.infinite ? std::numeric_limits<float>::infinity() : length(m_light_origin.p - lv.hit.p);
+            y.dist =
+                m_light_origin.infinite ? std::numeric_limits<float>::infinity() : length(m_light_origin.p - lv.hit.p);
             y.n = m_light_origin.n;
             weight = m_t.m_weights.weight(PathGenerator::SourceShooting, *r.vertex, r.wo, z, y);
         }

@@ -51,10 +51,10 @@ void GeneratorPath::gathered_point(const VertexBsdf& z, const Vec3& w_c, const C
     SpawnPoints spawn(hit.p, v.ng);
     const bool own = cfg.generator == PathGenerator::SurfaceSampling && !one_bounce_only;
     const bool roulette_here = own && cfg.rr_mode != RouletteMode::Off && n + 1 >= cfg.rr_start_bounce;
-    const BounceSample u = draw(slot(n, 2), k_need_light_select | k_need_light | k_need_lobe |
-                                                (roulette_here ? k_need_roulette : 0u));
-    const OneBounceRef ob = r && cfg.combine ? OneBounceRef{r->vertex, r->wo, &z, PathGenerator::SurfaceSampling}
-                                             : OneBounceRef{};
+    const BounceSample u =
+        draw(slot(n, 2), k_need_light_select | k_need_light | k_need_lobe | (roulette_here ? k_need_roulette : 0u));
+    const OneBounceRef ob =
+        r && cfg.combine ? OneBounceRef{r->vertex, r->wo, &z, PathGenerator::SurfaceSampling} : OneBounceRef{};
     gathered_direct(z, w_c, v, spawn, beta, u, ob);
 
     // Light arriving at z along its BSDF ray: a constant world's, and (longer paths) what delta chains bring.
@@ -81,8 +81,9 @@ void GeneratorPath::gathered_point(const VertexBsdf& z, const Vec3& w_c, const C
     Color b = beta;
     if (roulette_here) {
         const float q = cfg.rr_mode == RouletteMode::SqrtThroughput ? arrival_survival(b, 1.f)
-                        : cfg.rr_mode == RouletteMode::Albedo ? min_num(1.f, max_component(bsdf.albedo(v.frame.to_local(w_c))))
-                                                              : min_num(1.f, max_component(b));
+                        : cfg.rr_mode == RouletteMode::Albedo
+                            ? min_num(1.f, max_component(bsdf.albedo(v.frame.to_local(w_c))))
+                            : min_num(1.f, max_component(b));
         if (!(q > 0.f) || u.roulette >= q) return;
         b /= q;
     }

@@ -23,10 +23,10 @@
 namespace candela {
 
 struct IcCacheRules {
-    float a = 0.15f;               // Ward's error a
-    bool gradients = true;         // interpolate with the gradients
+    float a = 0.15f;        // Ward's error a
+    bool gradients = true;  // interpolate with the gradients
     bool neighbour_clamping = true;
-    size_t capacity = 1u << 20;    // records stored at most
+    size_t capacity = 1u << 20;  // records stored at most
 };
 
 class IcCache {

@@ -28,9 +28,7 @@ inline float ic_error(const IcRecord& r, const Vec3& x, const Vec3& n) {
 }
 
 /// w_i = 1/ε_i (infinite at the record itself).
-inline float ic_weight(float error) {
-    return error > 0.f ? 1.f / error : std::numeric_limits<float>::infinity();
-}
+inline float ic_weight(float error) { return error > 0.f ? 1.f / error : std::numeric_limits<float>::infinity(); }
 
 /// Whether the record lies in front of x (see above): then it is not used.
 inline bool ic_in_front(const IcRecord& r, const Vec3& x, const Vec3& n, float a) {

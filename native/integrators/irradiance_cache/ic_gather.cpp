@@ -104,7 +104,8 @@ bool IcTracer::prepass_record(int fx, int fy, uint64_t key, PathStats& stats, Ic
         const Vec3 wi = v.frame.to_world(bs.wi);
         const float cos_g = dot(wi, v.ng);
         if (leaks(cos_g, bs.wi.z)) return false;
-        ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? v.ng : -v.ng), wi, 0.f, k_inf, continuation_ray_type(bs, ray.type)};
+        ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? v.ng : -v.ng), wi, 0.f, k_inf,
+                  continuation_ray_type(bs, ray.type)};
         from = hit.primitive;
     }
     return false;

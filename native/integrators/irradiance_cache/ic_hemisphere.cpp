@@ -61,8 +61,8 @@ GatherEstimate estimate_gather(const HemisphereSamples& s) {
     double gt[3][3] = {};
     for (int k = 0; k < N; ++k) {
         const double phi_c = dphi * (double(k) + 0.5), phi_b = dphi * double(k);
-        const double ux = std::cos(phi_c), uy = std::sin(phi_c);      // u_k
-        const double vx = -std::sin(phi_b), vy = std::cos(phi_b);     // v_k⁻
+        const double ux = std::cos(phi_c), uy = std::sin(phi_c);   // u_k
+        const double vx = -std::sin(phi_b), vy = std::cos(phi_b);  // v_k⁻
         for (int j = 0; j < M; ++j) {
             const double sin_lo = std::sqrt(double(j) / M), sin_hi = std::sqrt(double(j + 1) / M);
             const size_t here = at(j, k);

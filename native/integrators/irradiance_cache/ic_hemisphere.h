@@ -43,7 +43,7 @@ Vec3 gather_direction(const GatherStrata& s, int j, int k, float u1, float u2);
 /// What the gather saw: per stratum (row-major, index j·N + k) the radiance and the hit distance (∞: escaped).
 struct HemisphereSamples {
     GatherStrata strata;
-    std::vector<Vec3> dir;   // local directions
+    std::vector<Vec3> dir;  // local directions
     std::vector<Color> L;
     std::vector<float> r;
 };

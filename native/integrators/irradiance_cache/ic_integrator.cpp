@@ -52,7 +52,8 @@ public:
         rules.neighbour_clamping = m_settings.neighbour_clamping;
         rules.capacity = ic_record_capacity(m_settings, double(film.width()) * film.height());
         IcCache cache(scene.bounds(), rules);
-        IcTracer tracer(scene, m_settings, light_sampler, cache, PixelFootprint::of(scene.camera()), ctx.cancel, m_probe);
+        IcTracer tracer(scene, m_settings, light_sampler, cache, PixelFootprint::of(scene.camera()), ctx.cancel,
+                        m_probe);
         State state{scene, film, ctx, cache, tracer};
         if (!prepass(state)) {
             ctx.counters.stop_reason = int(StopReason::Cancelled);
@@ -84,8 +85,10 @@ private:
         });
         size_t dropped = 0;
         for (const IcRecord& r : pending)
-            if (s.cache.full()) ++dropped;
-            else s.cache.insert(r);
+            if (s.cache.full())
+                ++dropped;
+            else
+                s.cache.insert(r);
         if (dropped && !s.logged_full) {
             s.logged_full = true;
             s.ctx.log("irradiance cache full at " + std::to_string(s.cache.size()) +
@@ -188,7 +191,9 @@ private:
                             tiles.render_tile(t, int(begin), int(end));
                             return out;
                         },
-                        [&](size_t, std::vector<IcRecord>&& out) { pending.insert(pending.end(), out.begin(), out.end()); },
+                        [&](size_t, std::vector<IcRecord>&& out) {
+                            pending.insert(pending.end(), out.begin(), out.end());
+                        },
                         &s.ctx.cancel);
                 } catch (const Cancelled&) {
                     return;  // the driver sees the cancel

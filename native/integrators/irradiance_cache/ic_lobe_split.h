@@ -40,7 +40,8 @@ public:
         } else {
             Bsdf* d = new (m_storage[0]) Bsdf();
             Bsdf* o = new (m_storage[1]) Bsdf();
-            for (int i = 0; i < b.size(); ++i) (std::holds_alternative<LambertBsdf>(b[i].lobe) ? d : o)->add(b[i].lobe, b[i].weight);
+            for (int i = 0; i < b.size(); ++i)
+                (std::holds_alternative<LambertBsdf>(b[i].lobe) ? d : o)->add(b[i].lobe, b[i].weight);
             diffuse = d;
             other = o;
         }

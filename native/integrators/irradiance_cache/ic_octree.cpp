@@ -10,8 +10,8 @@ IcOctree::IcOctree(const Vec3& center, float half_size)
 void IcOctree::insert(uint32_t index, const Vec3& p, float radius) {
     float side = 2.f * m_half;
     Vec3 lo = m_min;
-    const bool inside = p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= lo.x + side && p.y <= lo.y + side &&
-                        p.z <= lo.z + side;
+    const bool inside =
+        p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= lo.x + side && p.y <= lo.y + side && p.z <= lo.z + side;
     int32_t node = 0;
     m_nodes[0].subtree.add(p, radius);
     if (inside) {

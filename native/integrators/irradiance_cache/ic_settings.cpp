@@ -26,20 +26,24 @@ const std::vector<ParamSpec>& IcSettings::specs() {
                     "Irradiance Cache"),
         int_param("ic_gather_rays", "Gather Rays", 1024, 4, 65536,
                   "Rays of each record's stratified hemisphere gather (M × N cells, N ≈ πM); each ray's radiance is "
-                  "path traced", "Irradiance Cache", 4096),
+                  "path traced",
+                  "Irradiance Cache", 4096),
         float_param("ic_min_spacing", "Min Spacing", 1.5, 0.0, 1000.0,
                     "Smallest validity radius of a record, in pixels at its distance (Tabellion & Lamorlette): keeps "
                     "corners and contact shadows from taking a record per pixel; 0 = no limit",
                     "Irradiance Cache", 20.0),
         float_param("ic_max_spacing", "Max Spacing", 20.0, 0.01, 100000.0,
                     "Largest validity radius of a record, in pixels at its distance: keeps open areas from being "
-                    "covered by a few far-reaching records", "Irradiance Cache", 200.0),
+                    "covered by a few far-reaching records",
+                    "Irradiance Cache", 200.0),
         bool_param("ic_gradients", "Gradients", true,
                    "Interpolate with Ward & Heckbert's rotational and translational irradiance gradients (smoother, "
-                   "more accurate for the same records)", "Irradiance Cache"),
+                   "more accurate for the same records)",
+                   "Irradiance Cache"),
         bool_param("ic_neighbour_clamping", "Neighbour Clamping", true,
                    "Limit a record's radius by its neighbours' (R_i ≤ R_j + ‖x_i − x_j‖, Křivánek et al.), so records "
-                   "are not too sparse near contact shadows a gather missed", "Irradiance Cache"),
+                   "are not too sparse near contact shadows a gather missed",
+                   "Irradiance Cache"),
         bool_param("ic_reuse_at_bounces", "Reuse at Later Bounces", false,
                    "Radiance's way: gather paths read the cache at diffuse surfaces instead of tracing on (faster; "
                    "adds the interpolation error of those records to the records that use them)",

@@ -32,9 +32,16 @@ void IcTracer::set_sink(std::vector<IcRecord>* sink) { t_sink = sink; }
 IcTracer::IcTracer(const Scene& scene, const IcSettings& settings, const LightSampler& light_sampler,
                    const IcCache& cache, const PixelFootprint& footprint, const CancelToken& cancel,
                    const IcProbe* probe)
-    : m_scene(scene), m_settings(settings), m_light_sampler(light_sampler), m_cache(cache), m_footprint(footprint),
-      m_cancel(cancel), m_probe(probe), m_strata(GatherStrata::for_rays(settings.gather_rays)),
-      m_rules(settings.direct), m_rules_gathered(settings.direct) {
+    : m_scene(scene),
+      m_settings(settings),
+      m_light_sampler(light_sampler),
+      m_cache(cache),
+      m_footprint(footprint),
+      m_cancel(cancel),
+      m_probe(probe),
+      m_strata(GatherStrata::for_rays(settings.gather_rays)),
+      m_rules(settings.direct),
+      m_rules_gathered(settings.direct) {
     m_rules_gathered.light_sampling = LightSampling::LightOnly;
 }
 
@@ -148,7 +155,8 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
     const float weight = std::fabs(bs.wi.z) / bs.pdf;
     Color beta_emit = st.beta * bs.f * weight;
     Color beta = beta_emit;
-    if (cached && !bs.is_delta()) beta = split->other->empty() ? Color(0.f) : st.beta * split->other->f(wo_local, bs.wi) * weight;
+    if (cached && !bs.is_delta())
+        beta = split->other->empty() ? Color(0.f) : st.beta * split->other->f(wo_local, bs.wi) * weight;
     const float eta_scale = st.eta_scale * (bs.is_transmission() ? bs.eta * bs.eta : 1.f);
     if (roulette_here) {
         const float survive =
@@ -190,8 +198,8 @@ Color IcTracer::Li(const Ray& camera_ray, const TracedHit& first, Sampler& sampl
 }
 
 template <class ConcreteSampler>
-void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats, Color& L, float* alpha,
-                            AovSample* aov, const TracedHit* first) const {
+void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats, Color& L, float* alpha, AovSample* aov,
+                            const TracedHit* first) const {
     if (m_probe && m_probe->on_camera_path) m_probe->on_camera_path();
     PathState st;
     st.rules = &m_rules;  // a camera ray: emission counts with weight 1 (origin.specular)
@@ -210,8 +218,10 @@ void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats,
         }
         add_area_light_emission(ray, found ? hit.t : ray.tmax, bounce == 0, st, L);
         if (!found) {
-            if (bounce == 0 && m_settings.pixel.film_transparent) *alpha = 0.f;
-            else add_world_emission(ray, st, L);
+            if (bounce == 0 && m_settings.pixel.film_transparent)
+                *alpha = 0.f;
+            else
+                add_world_emission(ray, st, L);
             return;
         }
         if (bounce == 0 && !camera_hit(m_scene, ray, hit, aov, alpha)) return;  // data passes, holdout
@@ -221,8 +231,8 @@ void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats,
         if (bounce > m_settings.max_bounces || is_black(st.beta)) return;
         st.distance += hit.t;
         auto draw = [&](unsigned needs) { return draw_bounce(sampler, bounce, needs); };
-        if (!scatter(hit, sp, ray, st, bounce, CachePolicy::Create, draw, stats, L,
-                     hash_combine(key, uint64_t(bounce)), px, py))
+        if (!scatter(hit, sp, ray, st, bounce, CachePolicy::Create, draw, stats, L, hash_combine(key, uint64_t(bounce)),
+                     px, py))
             return;
     }
 }

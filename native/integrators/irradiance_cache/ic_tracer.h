@@ -87,13 +87,13 @@ public:
 
     /// What a ray carries to the vertex it finds (public for the implementation's helpers).
     struct PathState {
-        Color beta_emit{1.f};  // throughput of light-sampled emission the ray finds (the whole BSDF at its origin)
-        Color beta{1.f};       // throughput of everything else (the lobes the cache did not serve there)
-        EmissionOrigin origin;                 // the scattering that made the ray (MIS at an emitter it finds)
+        Color beta_emit{1.f};   // throughput of light-sampled emission the ray finds (the whole BSDF at its origin)
+        Color beta{1.f};        // throughput of everything else (the lobes the cache did not serve there)
+        EmissionOrigin origin;  // the scattering that made the ray (MIS at an emitter it finds)
         const DirectLightRules* rules = nullptr;  // the rules emission found by it is weighed with
-        float eta_scale = 1.f;                 // Π η² (roulette only)
+        float eta_scale = 1.f;                    // Π η² (roulette only)
         PrimitiveRef from;
-        float distance = 0.f;                  // path length from the camera (camera paths)
+        float distance = 0.f;  // path length from the camera (camera paths)
     };
     enum class CachePolicy { Create, ReadIfValid, Never };
 

@@ -18,11 +18,12 @@ namespace {
 void check_camera(const Params& params) {
     const std::string type = params.get<std::string>("camera_type", "PERSP");
     if (type == "ORTHO" && !params.get<bool>("use_dof", false))
-        throw InvalidParameter("integrator LIGHT: the orthographic camera without depth of field has no light-tracing "
-                               "strategy (no light path can reach it); use PATH or BDPT, or enable depth of field");
+        throw InvalidParameter(
+            "integrator LIGHT: the orthographic camera without depth of field has no light-tracing "
+            "strategy (no light path can reach it); use PATH or BDPT, or enable depth of field");
     if (type == "PANO")
-        throw InvalidParameter("integrator LIGHT: " + Camera::panoramic_not_connectable_message(
-                                   params.get<std::string>("panorama_type", "FISHEYE_EQUISOLID")));
+        throw InvalidParameter("integrator LIGHT: " + Camera::panoramic_not_connectable_message(params.get<std::string>(
+                                                          "panorama_type", "FISHEYE_EQUISOLID")));
 }
 
 class LightIntegrator final : public Integrator {
@@ -37,12 +38,14 @@ public:
             throw InvalidParameter("integrator LIGHT: " + scene.camera().not_connectable_message());
         const EmitterSet& emitters = scene.emitters();
         if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
-            ctx.log("LIGHT: objects hidden from diffuse, glossy or transmission rays are visible to light paths "
-                    "(only camera and shadow visibility are honoured)");
+            ctx.log(
+                "LIGHT: objects hidden from diffuse, glossy or transmission rays are visible to light paths "
+                "(only camera and shadow visibility are honoured)");
         for (uint32_t k = 0; k < scene.materials().size(); ++k)
             if (scene.material_flags(k) & k_bsdf_specular) {
-                ctx.log("LIGHT: surfaces the camera sees only through mirrors or glass stay black (a light path cannot "
-                        "connect to the camera through a delta lobe; only lights seen that way are drawn); use BDPT");
+                ctx.log(
+                    "LIGHT: surfaces the camera sees only through mirrors or glass stay black (a light path cannot "
+                    "connect to the camera through a delta lobe; only lights seen that way are drawn); use BDPT");
                 break;
             }
         const SpecularCameraTracer camera_tracer(scene, m_settings);
@@ -70,10 +73,12 @@ public:
                     for (int s = begin; s < end; ++s) {
                         const uint32_t r = noise_replicate_of(uint32_t(s));
                         Sampler& sampler = replicates[r];
-                        std::visit([&](auto& c) {
-                            c.start_pixel_sample(uint32_t(film.origin_x() + x), uint32_t(film.origin_y() + y),
-                                                 index_in_replicate(uint32_t(s)));
-                        }, sampler);
+                        std::visit(
+                            [&](auto& c) {
+                                c.start_pixel_sample(uint32_t(film.origin_x() + x), uint32_t(film.origin_y() + y),
+                                                     index_in_replicate(uint32_t(s)));
+                            },
+                            sampler);
                         tracer.trace(sampler, dim_bounce, r, out.buffer, stats);
                     }
             }

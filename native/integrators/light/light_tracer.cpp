@@ -58,10 +58,11 @@ void LightTracer::trace_path(S& sampler, int dim_bounce, uint32_t replicate, Spl
     const LightWalkRules rules{cfg.max_bounces + 1, cfg.rr_mode, cfg.rr_start_bounce};
     // Up to half the filter's support beyond the frame, as the camera rays of the border pixels reach.
     const float margin = 0.5f * cfg.pixel.filter.support();
-    walk_light_path(m_scene, m_emitters, rules, sampler, dim_bounce, stats, [](const EmissionSample&, uint32_t) {},
-                    [&](const VertexBsdf& vb, const Vec3& w_l, const Color& beta, int, const BounceSample& u) {
-                        connect_to_camera(m_scene, vb, w_l, beta, u.light, margin, replicate, splats, stats);
-                    });
+    walk_light_path(
+        m_scene, m_emitters, rules, sampler, dim_bounce, stats, [](const EmissionSample&, uint32_t) {},
+        [&](const VertexBsdf& vb, const Vec3& w_l, const Color& beta, int, const BounceSample& u) {
+            connect_to_camera(m_scene, vb, w_l, beta, u.light, margin, replicate, splats, stats);
+        });
 }
 
 Color SpecularCameraTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha,
@@ -83,9 +84,12 @@ Color SpecularCameraTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStat
                 L += beta * std::get<AreaLight>(lights[li]).radiance;
         }
         if (!found) {
-            if (bounce == 0 && m_settings.pixel.film_transparent) *alpha = 0.f;
-            else if (const WorldLight* world = lights.world()) L += beta * world->Le(ray.d);
-            else L += beta * lights.background();
+            if (bounce == 0 && m_settings.pixel.film_transparent)
+                *alpha = 0.f;
+            else if (const WorldLight* world = lights.world())
+                L += beta * world->Le(ray.d);
+            else
+                L += beta * lights.background();
             return L;
         }
         if (bounce == 0 && !camera_hit(m_scene, ray, hit, aov, alpha)) return L;
@@ -105,7 +109,8 @@ Color SpecularCameraTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStat
         if (leaks(cos_g, bs.wi.z)) return L;
         beta *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
         if (is_black(beta) || !is_finite(beta)) return L;
-        ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? v.ng : -v.ng), wi, 0.f, k_inf, continuation_ray_type(bs, ray.type)};
+        ray = Ray{offset_ray_origin(hit.p, cos_g > 0.f ? v.ng : -v.ng), wi, 0.f, k_inf,
+                  continuation_ray_type(bs, ray.type)};
         from = hit.primitive;
     }
 }

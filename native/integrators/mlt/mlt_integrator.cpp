@@ -50,8 +50,8 @@ Bootstrap run_bootstrap(const PathSpace& space, const MltSettings& s, bool multi
             MltSample sample;
             PathStats stats;
             for (size_t e = chunk * k_chunk; e < std::min(n, (chunk + 1) * k_chunk); ++e) {
-                bootstrap_sample(space, state_key(seed, boot.index_of(e), boot.depth_of(e)), boot.depth_of(e), u,
-                                 stats, sample);
+                bootstrap_sample(space, state_key(seed, boot.index_of(e), boot.depth_of(e)), boot.depth_of(e), u, stats,
+                                 sample);
                 boot.importance[e] = sample.importance;
             }
             stats.flush(counters);
@@ -90,10 +90,12 @@ public:
         const PixelSampling& ps = m_settings.bdpt.pixel;
         if (ps.film_transparent) ctx.log(std::string(name) + ": the film is rendered opaque (no transparent film)");
         if (scene.hidden_ray_types() & (k_ray_diffuse | k_ray_glossy | k_ray_transmission))
-            ctx.log(std::string(name) + ": objects hidden from diffuse, glossy or transmission rays are visible to "
+            ctx.log(std::string(name) +
+                    ": objects hidden from diffuse, glossy or transmission rays are visible to "
                     "light subpaths and connections (only camera and shadow visibility are honoured)");
         const PathSpace space(scene, m_settings.bdpt, emitters);
-        const Bootstrap boot = run_bootstrap(space, m_settings, m_multiplexed, ps.seed, ctx.threads, ctx.counters, &ctx.cancel);
+        const Bootstrap boot =
+            run_bootstrap(space, m_settings, m_multiplexed, ps.seed, ctx.threads, ctx.counters, &ctx.cancel);
         if (ctx.cancel.cancelled()) {  // cancelled during the bootstrap: no chain, an empty image
             ctx.counters.work_total = ps.samples;
             ctx.counters.stop_reason = int(StopReason::Cancelled);
@@ -169,10 +171,12 @@ public:
             [&] { return film.noise_estimate(); });
         const uint64_t mutations = total.accepted + total.rejected;
         char line[256];
-        std::snprintf(line, sizeof line, "%s: b = %.6g from %d bootstrap paths%s, %d chains, %llu mutations, %.1f %% accepted "
+        std::snprintf(line, sizeof line,
+                      "%s: b = %.6g from %d bootstrap paths%s, %d chains, %llu mutations, %.1f %% accepted "
                       "(%llu accepted, %llu rejected, %.1f %% large steps)",
                       name, b, m_settings.bootstrap, m_multiplexed ? " per depth" : "", m_settings.chains,
-                      (unsigned long long)mutations, mutations ? 100.0 * double(total.accepted) / double(mutations) : 0.0,
+                      (unsigned long long)mutations,
+                      mutations ? 100.0 * double(total.accepted) / double(mutations) : 0.0,
                       (unsigned long long)total.accepted, (unsigned long long)total.rejected,
                       mutations ? 100.0 * double(total.large_steps) / double(mutations) : 0.0);
         ctx.log(line);
@@ -197,7 +201,8 @@ double mlt_integrator_memory(const Params& params, double film_pixels) {
     const double chains = double(params.get<int64_t>("mlt_chains", 1000));
     const double bootstrap = double(params.get<int64_t>("mlt_bootstrap", 100000));
     const double depths = params.get<std::string>("integrator", "MLT") == "MMLT"
-                              ? double(params.get<int64_t>("max_bounces", 12) + 2) : 1.0;
+                              ? double(params.get<int64_t>("max_bounces", 12) + 2)
+                              : 1.0;
     // The film's splat accumulators, the bootstrap's importances (and their sampling tables), each chain's state
     // (primary samples with backups, two evaluated samples: ~8 KB), the splat buffers of the chains in flight.
     return film_pixels * double(sizeof(SplatAccum)) + bootstrap * depths * 4.0 * sizeof(float) + chains * 8192.0 +

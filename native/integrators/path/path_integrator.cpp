@@ -1,7 +1,7 @@
 #include "integrators/path/path_integrator.h"
 
-#include "integrators/path/path_tracer.h"
 #include "integrators/camera_tiles.h"
+#include "integrators/path/path_tracer.h"
 #include "lights/light_sampler.h"
 
 namespace candela {

@@ -18,14 +18,14 @@ enum class HemisphereSampling { Uniform, Cosine, Bsdf };
 
 struct PathSettings {
     PixelSampling pixel;
-    LightPathSettings paths;        // bounce budget (max_bounces: 0 = direct lighting only), clamps, caustics
-    int max_bounces = 12;           // = paths.max_bounces
-    int rr_start_bounce = 3;        // Russian roulette from this bounce on
+    LightPathSettings paths;  // bounce budget (max_bounces: 0 = direct lighting only), clamps, caustics
+    int max_bounces = 12;     // = paths.max_bounces
+    int rr_start_bounce = 3;  // Russian roulette from this bounce on
     RouletteMode rr_mode = RouletteMode::Throughput;
     HemisphereSampling hemisphere_sampling = HemisphereSampling::Bsdf;
-    DirectLightRules direct;        // light sampling, MIS heuristic, light pdf, light samples, Ward's threshold
+    DirectLightRules direct;               // light sampling, MIS heuristic, light pdf, light samples, Ward's threshold
     std::string light_selection = "TREE";  // registry name of the light-selection strategy
-    int branching_factor = 1;       // continuation rays at the first surface (stochastic ray tracing)
+    int branching_factor = 1;              // continuation rays at the first surface (stochastic ray tracing)
 
     static PathSettings from_params(const Params& params);
     /// The PATH integrator's own settings (besides common_param_specs()), as the add-on draws them.

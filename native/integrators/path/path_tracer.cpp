@@ -3,13 +3,13 @@
 #include <cmath>
 #include <limits>
 
+#include "bsdf/bsdf_filters.h"
 #include "core/frame.h"
 #include "core/math.h"
 #include "integrators/camera_hit.h"
 #include "integrators/ray_types.h"
 #include "integrators/shadow_ray.h"
 #include "sampling/warp.h"
-#include "bsdf/bsdf_filters.h"
 #include "scene/ray_offset.h"
 
 namespace candela {
@@ -41,7 +41,8 @@ float continuation_pdf(HemisphereSampling mode, const Bsdf& bsdf, const Vec3& wo
     if (mode == HemisphereSampling::Bsdf || (bsdf.flags() & k_bsdf_specular)) return bsdf.pdf(wo, wi);
     const bool both_sides = (bsdf.flags() & k_bsdf_transmission) != 0;
     if (!both_sides && wi.z <= 0.f) return 0.f;
-    const float p = mode == HemisphereSampling::Uniform ? uniform_hemisphere_pdf() : cosine_hemisphere_pdf(std::fabs(wi.z));
+    const float p =
+        mode == HemisphereSampling::Uniform ? uniform_hemisphere_pdf() : cosine_hemisphere_pdf(std::fabs(wi.z));
     return both_sides ? 0.5f * p : p;
 }
 
@@ -94,7 +95,8 @@ inline __attribute__((always_inline)) void PathTracer::add_area_light_emission(c
     if (lights.area_lights().empty()) return;
     uint32_t li;
     float tl;
-    if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, t_surface, &li, &tl, /*camera_ray=*/ray.type == k_ray_camera)) {
+    if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, t_surface, &li, &tl,
+                                     /*camera_ray=*/ray.type == k_ray_camera)) {
         const auto& area = std::get<AreaLight>(lights[li]);
         add_emission(st, area.radiance,
                      nee_density(m_settings.direct, m_light_sampler, lights, st.origin, li, ray.d, st.mis_t + tl), L);
@@ -112,9 +114,10 @@ inline __attribute__((always_inline)) void PathTracer::add_world_emission(const 
                      : std::fmax(0.f, *alpha - (st.beta.x + st.beta.y + st.beta.z) / 3.f);
     } else if (const WorldLight* world = lights.world()) {
         const uint32_t index = uint32_t(lights.world_light());
-        const Color Le = m_scene.world_reads_light_path() ? m_scene.world_radiance(ray.d, st.lp.info(k_inf))
-                                                          : world->Le(ray.d);
-        add_emission(st, Le, nee_density(m_settings.direct, m_light_sampler, lights, st.origin, index, ray.d, k_inf), L);
+        const Color Le =
+            m_scene.world_reads_light_path() ? m_scene.world_radiance(ray.d, st.lp.info(k_inf)) : world->Le(ray.d);
+        add_emission(st, Le, nee_density(m_settings.direct, m_light_sampler, lights, st.origin, index, ray.d, k_inf),
+                     L);
     } else if (m_scene.world_reads_light_path()) {
         add_emission(st, m_scene.world_radiance(ray.d, st.lp.info(k_inf)), 0.f, L);  // constant but path-dependent
     } else if (!is_black(lights.background())) {
@@ -150,9 +153,10 @@ void PathTracer::trace(Ray ray, PathState st, int vertex, ConcreteSampler& sampl
         if (light_path) info = st.lp.info(hit.t * length(ray.d));
         const ShadingPoint sp = m_scene.shade(hit, -ray.d, light_path ? &info : nullptr);
         if (!is_black(sp.emission)) {
-            const float light_pdf = hit.light >= 0 ? nee_density(m_settings.direct, m_light_sampler, m_scene.lights(),
-                                                                  st.origin, uint32_t(hit.light), ray.d, st.mis_t + hit.t)
-                                                   : 0.f;
+            const float light_pdf = hit.light >= 0
+                                        ? nee_density(m_settings.direct, m_light_sampler, m_scene.lights(), st.origin,
+                                                      uint32_t(hit.light), ray.d, st.mis_t + hit.t)
+                                        : 0.f;
             add_emission(st, sp.emission, light_pdf, L);
         }
         if (!may_scatter(paths, st.lp.depth)) {
@@ -186,10 +190,10 @@ inline __attribute__((always_inline)) bool PathTracer::scatter(const SurfaceHit&
     const Vec3 wo_local = v.frame.to_local(wo);
     // The BSDF, with the Light Paths rules (Filter Glossy, Caustics) and bump shadowing where they apply.
     BsdfSlot slot;
-    const Bsdf& bsdf = (sp.bent || modifies_bsdfs(cfg.paths))
-                           ? vertex_scattering_bsdf(sp.bsdf(), cfg.paths, st.lp, wo_local.z,
-                                                    v.bump_shadowing(sp.bent, hit.ns), slot)
-                           : sp.bsdf();
+    const Bsdf& bsdf =
+        (sp.bent || modifies_bsdfs(cfg.paths))
+            ? vertex_scattering_bsdf(sp.bsdf(), cfg.paths, st.lp, wo_local.z, v.bump_shadowing(sp.bent, hit.ns), slot)
+            : sp.bsdf();
     SpawnPoints spawn(hit.p, v.ng);
     const int bounce = st.lp.depth.bounce;  // scatterings so far (transparent pass-throughs excluded)
 
@@ -235,8 +239,8 @@ inline __attribute__((always_inline)) bool PathTracer::scatter(const SurfaceHit&
     if (nee_here) {
         const ShadowRayInputs shadow{st.lp.shadow_info(), cfg.paths.transparent_bounces - st.lp.depth.transparent};
         ward_tested = next_event_estimation(
-            cfg.direct, m_light_sampler, lights, ctx, u_select, u_light,
-            [&](uint32_t li, float pmf, Vec2 u_li) __attribute__((always_inline)) {
+            cfg.direct, m_light_sampler, lights, ctx, u_select,
+            u_light, [&](uint32_t li, float pmf, Vec2 u_li) __attribute__((always_inline)) {
                 DirectLightSample d = sample_direct_light(
                     m_scene, cfg.direct, hit, v, spawn, ctx, bsdf, wo_local, st.beta, li, pmf, u_li,
                     [&](const Vec3& wi_local) __attribute__((always_inline)) {

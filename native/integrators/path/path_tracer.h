@@ -46,14 +46,14 @@ public:
 
     /// How the ray being traced was produced: what the vertex it hits needs for MIS, roulette and dims.
     struct PathState {
-        Color beta{1.f};         // throughput
-        EmissionOrigin origin;   // the scattering that produced the ray, for MIS at an emitter it finds
-        float mis_t = 0.f;       // distance from that scattering to the ray's origin (transparent surfaces between)
-        float eta_scale = 1.f;   // Π η² over refractions (roulette only)
-        PrimitiveRef from;       // the triangle the ray leaves (skipped by the intersection)
-        int dim_offset = 0;      // added to the vertex index for sample dimensions (branches use their own)
+        Color beta{1.f};           // throughput
+        EmissionOrigin origin;     // the scattering that produced the ray, for MIS at an emitter it finds
+        float mis_t = 0.f;         // distance from that scattering to the ray's origin (transparent surfaces between)
+        float eta_scale = 1.f;     // Π η² over refractions (roulette only)
+        PrimitiveRef from;         // the triangle the ray leaves (skipped by the intersection)
+        int dim_offset = 0;        // added to the vertex index for sample dimensions (branches use their own)
         AovSample* aov = nullptr;  // camera ray only: where its first hit's data passes go
-        LightPathState lp;       // bounce counts, the ray's type for the Light Path node, Filter Glossy's pdf
+        LightPathState lp;         // bounce counts, the ray's type for the Light Path node, Filter Glossy's pdf
     };
 
 private:
@@ -62,8 +62,8 @@ private:
     /// `vertex` counts the surfaces the path has reached (0: the camera ray's), transparent ones included: it
     /// names the sample dimensions. The bounce counts live in the state (PathState::lp).
     template <class ConcreteSampler>
-    void trace(Ray ray, PathState state, int vertex, ConcreteSampler& sampler, PathStats& stats, Color& L,
-               float* alpha, const TracedHit* first = nullptr) const;
+    void trace(Ray ray, PathState state, int vertex, ConcreteSampler& sampler, PathStats& stats, Color& L, float* alpha,
+               const TracedHit* first = nullptr) const;
     /// The vertex at `hit`: roulette, next-event estimation and the continuation. Returns true with `ray` and
     /// `state` set to the continuation's; false when the path ends here (or went on in branches).
     template <class ConcreteSampler>

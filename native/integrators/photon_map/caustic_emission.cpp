@@ -19,10 +19,14 @@ Vec3 emitter_center(const Light& light) {
     return std::visit(
         [](const auto& l) -> Vec3 {
             using T = std::decay_t<decltype(l)>;
-            if constexpr (std::is_same_v<T, PointLight>) return l.position;
-            else if constexpr (std::is_same_v<T, AreaLight>) return l.center;
-            else if constexpr (std::is_same_v<T, TriangleLight>) return (l.p0 + l.p1 + l.p2) / 3.f;
-            else return Vec3(0.f);
+            if constexpr (std::is_same_v<T, PointLight>)
+                return l.position;
+            else if constexpr (std::is_same_v<T, AreaLight>)
+                return l.center;
+            else if constexpr (std::is_same_v<T, TriangleLight>)
+                return (l.p0 + l.p1 + l.p2) / 3.f;
+            else
+                return Vec3(0.f);
         },
         light);
 }
@@ -133,8 +137,8 @@ CausticEmission::CausticEmission(const EmitterSet& emitters, const std::vector<C
         float total = 0.f;
         for (float v : s) total += v;
         for (size_t j = 0; j < m; ++j) m_target_probs[i * m + j] = total > 0.f ? s[j] / total : 1.f / float(m);
-        m_target_select.emplace_back(std::vector<float>(m_target_probs.begin() + long(i * m),
-                                                        m_target_probs.begin() + long((i + 1) * m)));
+        m_target_select.emplace_back(
+            std::vector<float>(m_target_probs.begin() + long(i * m), m_target_probs.begin() + long((i + 1) * m)));
         const float p = emitters.power(uint32_t(i));
         weights[i] = p > 0.f ? p * std::max(coverage, 1e-4f) : 0.f;
         power += p;
@@ -150,8 +154,10 @@ float CausticEmission::direction_pdf(const float* s, const Vec3& y, const Vec3& 
         if (!(s[j] > 0.f)) continue;
         Vec3 axis;
         float c, omc;
-        if (!target_cone(m_targets[j], y, &axis, &c, &omc)) p += s[j] * k_inv_four_pi;
-        else if (dot(w, axis) >= c) p += s[j] / (2.f * k_pi * omc);
+        if (!target_cone(m_targets[j], y, &axis, &c, &omc))
+            p += s[j] * k_inv_four_pi;
+        else if (dot(w, axis) >= c)
+            p += s[j] / (2.f * k_pi * omc);
     }
     return p;
 }
@@ -199,8 +205,10 @@ LightPathStart CausticEmission::sample(float u_select, Vec2 u_pos, Vec2 u_dir, f
         if (!pt.valid()) return out;
         Vec3 axis, d;
         float c, omc;
-        if (target_cone(target, pt.p, &axis, &c, &omc)) d = Frame(axis).to_world(sample_uniform_cone(u_dir, c));
-        else d = sample_uniform_sphere(u_dir);
+        if (target_cone(target, pt.p, &axis, &c, &omc))
+            d = Frame(axis).to_world(sample_uniform_cone(u_dir, c));
+        else
+            d = sample_uniform_sphere(u_dir);
         const float p_dir = direction_pdf(s, pt.p, d);
         if (!(p_dir > 0.f)) return out;
         const Color Le = light_radiance(light, pt, d);

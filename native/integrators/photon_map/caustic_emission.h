@@ -34,7 +34,7 @@ struct CausticTarget {
 
 /// What the scene can do with caustics, for the photon mapper's "only what the scene calls for".
 struct CausticAnalysis {
-    bool any_traced_material = false;  // some material may have a traced lobe somewhere
+    bool any_traced_material = false;    // some material may have a traced lobe somewhere
     std::vector<CausticTarget> targets;  // the bounding spheres of the objects with traced triangles
     bool merged = false;                 // too many objects: one sphere around them all
 };

@@ -27,14 +27,14 @@ inline constexpr float k_gaussian_kernel_beta = 1.953f;
 inline float kernel_weight(DensityKernel kernel, float t) {
     if (!(t <= 1.f)) return 0.f;
     switch (kernel) {
-        case DensityKernel::Box: return 1.f;
-        case DensityKernel::Cone: return 3.f * (1.f - std::sqrt(t));
-        default: {
-            const float b = 0.5f * k_gaussian_kernel_beta;
-            const float tail = std::exp(-b);
-            const float i0 = (1.f - tail) / b - tail;
-            return (std::exp(-b * t) - tail) / i0;
-        }
+    case DensityKernel::Box: return 1.f;
+    case DensityKernel::Cone: return 3.f * (1.f - std::sqrt(t));
+    default: {
+        const float b = 0.5f * k_gaussian_kernel_beta;
+        const float tail = std::exp(-b);
+        const float i0 = (1.f - tail) / b - tail;
+        return (std::exp(-b * t) - tail) / i0;
+    }
     }
 }
 

@@ -40,7 +40,7 @@ inline uint32_t encode_flux(const Color& c, float u) {
     const float m = max_component(c);
     if (!(m > 0.f) || !std::isfinite(m)) return 0u;
     int e2 = 0;
-    std::frexp(m, &e2);  // m = f·2^e2, f in [0.5, 1)
+    std::frexp(m, &e2);                              // m = f·2^e2, f in [0.5, 1)
     int e = std::max(e2 + k_flux_exponent_bias, 0);  // below 2⁻²¹ of the scale: the smallest exponent
     float scale = std::ldexp(1.f, 9 - (e - k_flux_exponent_bias));
     if (m * scale > 511.f && e < 31) {  // the largest mantissa must stay below 512 after rounding up

@@ -90,8 +90,10 @@ Color PhotonCameraTracer::gather(Ray ray, PrimitiveRef from, bool close_rule, Pc
         const uint32_t traced = traced_lobe_mask(bsdf, alpha_t);
         const bool has_estimated = bsdf.size() > __builtin_popcount(traced);
         if (has_estimated) {
-            if (close_rule && chain == 0 && hit.t < close) L += beta * close_hit(hit, sp, wo, traced, rng, stats, scratch);
-            else L += beta * map_estimate(hit, sp, wo, scratch);
+            if (close_rule && chain == 0 && hit.t < close)
+                L += beta * close_hit(hit, sp, wo, traced, rng, stats, scratch);
+            else
+                L += beta * map_estimate(hit, sp, wo, scratch);
         }
         if (traced == 0) return L;
         const LobeSubset traced_part{alpha_t, true};
@@ -137,7 +139,8 @@ Color PhotonCameraTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats&
             }
         }
         if (!found) {
-            if (bounce == 0 && m_settings.pixel.film_transparent) *alpha = 0.f;
+            if (bounce == 0 && m_settings.pixel.film_transparent)
+                *alpha = 0.f;
             else if (const WorldLight* world = lights.world()) {
                 const float p = nee_density(m_direct_t, m_light_sampler, lights, origin, uint32_t(lights.world_light()),
                                             ray.d, k_inf);
@@ -160,7 +163,8 @@ Color PhotonCameraTracer::Li(const Ray& camera_ray, Sampler& sampler, PathStats&
         const Bsdf& bsdf = sp.bsdf();
         const uint32_t traced = traced_lobe_mask(bsdf, alpha_t);
         const bool has_estimated = bsdf.size() > __builtin_popcount(traced);
-        const BounceSample u = draw(sampler, bounce, k_need_light_select | k_need_light | k_need_lobe | k_need_roulette);
+        const BounceSample u =
+            draw(sampler, bounce, k_need_light_select | k_need_light | k_need_lobe | k_need_roulette);
         if (has_estimated) {
             // Direct light, caustics and final gathering through E.
             const Bsdf part = lobe_subset(bsdf, traced, false);

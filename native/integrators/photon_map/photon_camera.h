@@ -37,7 +37,11 @@ class PhotonCameraTracer {
 public:
     PhotonCameraTracer(const Scene& scene, const PhotonSettings& settings, const LightSampler& light_sampler,
                        const PhotonMap& global, const PhotonMap& caustic, float max_radius)
-        : m_scene(scene), m_settings(settings), m_light_sampler(light_sampler), m_global(global), m_caustic(caustic),
+        : m_scene(scene),
+          m_settings(settings),
+          m_light_sampler(light_sampler),
+          m_global(global),
+          m_caustic(caustic),
           m_lookup{settings.k, max_radius, settings.kernel} {
         m_direct_e.light_sampling = LightSampling::LightOnly;
         m_direct_t.light_sampling = LightSampling::Mis;

@@ -50,7 +50,8 @@ public:
                                                     ctx, "Tracing photons"),
                                       ctx, "Building photon map");
             ctx.log("PHOTON: global map of " + millions(double(global.size())) + " photons from " +
-                    millions(double(n_global)) + " paths (" + std::to_string(int(global.memory_bytes() / 1e6)) + " MB)");
+                    millions(double(n_global)) + " paths (" + std::to_string(int(global.memory_bytes() / 1e6)) +
+                    " MB)");
             if (aimed) {
                 const int64_t n_caustic = cfg.resolve_caustic(frame_pixels);
                 caustic = build_photon_map(shoot_photons(tracer, emitters, PhotonStore::Caustic, n_caustic,
@@ -103,10 +104,10 @@ double sppm_integrator_memory(const Params& params, double film_pixels) {
     const double photons = double(s.resolve_photons(film_pixels)) * k_stored_per_path * k_photon_bytes;
     const double limit_mb = params.get<double>("memory_limit_mb", 0.0);
     if (limit_mb > 0.0 && photons > limit_mb * 1e6)
-        throw InvalidParameter("integrator SPPM: the photon map of sppm_photons = " +
-                               std::to_string(s.resolve_photons(film_pixels)) + " per iteration needs about " +
-                               std::to_string(int(photons / 1e6)) + " MB, more than memory_limit_mb = " +
-                               std::to_string(int(limit_mb)) + ": lower Photons per Iteration");
+        throw InvalidParameter(
+            "integrator SPPM: the photon map of sppm_photons = " + std::to_string(s.resolve_photons(film_pixels)) +
+            " per iteration needs about " + std::to_string(int(photons / 1e6)) +
+            " MB, more than memory_limit_mb = " + std::to_string(int(limit_mb)) + ": lower Photons per Iteration");
     return photons + film_pixels * sppm_bytes_per_pixel();
 }
 
@@ -120,11 +121,11 @@ double photon_integrator_memory(const Params& params, double film_pixels) {
     const double caustic = double(s.resolve_caustic(film_pixels)) * k_photon_bytes;  // at most one per path, mostly
     const double limit_mb = params.get<double>("memory_limit_mb", 0.0);
     if (limit_mb > 0.0 && global + caustic > limit_mb * 1e6)
-        throw InvalidParameter("integrator PHOTON: the photon maps of global_photons = " +
-                               std::to_string(s.resolve_global(film_pixels)) + " and caustic_photons = " +
-                               std::to_string(s.resolve_caustic(film_pixels)) + " need about " +
-                               std::to_string(int((global + caustic) / 1e6)) + " MB, more than memory_limit_mb = " +
-                               std::to_string(int(limit_mb)) + ": lower Global Photons or Caustic Photons");
+        throw InvalidParameter(
+            "integrator PHOTON: the photon maps of global_photons = " + std::to_string(s.resolve_global(film_pixels)) +
+            " and caustic_photons = " + std::to_string(s.resolve_caustic(film_pixels)) + " need about " +
+            std::to_string(int((global + caustic) / 1e6)) + " MB, more than memory_limit_mb = " +
+            std::to_string(int(limit_mb)) + ": lower Global Photons or Caustic Photons");
     return global + caustic;
 }
 

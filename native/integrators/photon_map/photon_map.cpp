@@ -52,7 +52,9 @@ public:
         // d_e ≥ d, so nanoflann's pruning by the Euclidean distance against the worst d_e stays exact.
         const float dist = m_filter.metric(m_photons[index], m_x, d2);
         if (!(dist < worstDist())) return true;
-        auto before = [](float d, uint32_t i, const PhotonNeighbor& o) { return d < o.dist2 || (d == o.dist2 && i < o.index); };
+        auto before = [](float d, uint32_t i, const PhotonNeighbor& o) {
+            return d < o.dist2 || (d == o.dist2 && i < o.index);
+        };
         if (m_n == m_k && !before(dist, index, m_out[m_k - 1])) return true;
         int j = m_n < m_k ? m_n++ : m_k - 1;
         while (j > 0 && before(dist, index, m_out[j - 1])) {
@@ -294,7 +296,8 @@ int PhotonMap::nearest(const Vec3& x, int k, float max_dist2, const PhotonFilter
     return set.size();
 }
 
-void PhotonMap::within(const Vec3& x, float max_dist2, const PhotonFilter& filter, std::vector<PhotonNeighbor>& out) const {
+void PhotonMap::within(const Vec3& x, float max_dist2, const PhotonFilter& filter,
+                       std::vector<PhotonNeighbor>& out) const {
     out.clear();
     if (!m_forest) return;
     WithinSet set(m_photons.data(), x, max_dist2, filter, out);

@@ -42,7 +42,7 @@ struct PhotonNeighbor {
 /// the distance in a flattened ellipsoid of half-thickness t·r for radius r (t = 1, or a zero normal: the sphere).
 /// On a flat surface d_e = d. For a surface that does not transmit, a photon must also have arrived from n's side.
 struct PhotonFilter {
-    Vec3 normal{0.f};    // unit, on the side the lookup looks from; zero: the sphere, no side check
+    Vec3 normal{0.f};     // unit, on the side the lookup looks from; zero: the sphere, no side check
     float flatten = 0.f;  // 1/t² − 1
     bool front_only = false;
 

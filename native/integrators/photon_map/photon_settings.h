@@ -39,17 +39,19 @@ struct PhotonSettings {
 };
 
 struct SppmSettings {
-    PixelSampling pixel;             // samples: iterations
+    PixelSampling pixel;  // samples: iterations
     int max_bounces = 12;
     int64_t photons_per_iteration = 0;  // 0 = automatic: one per pixel of the frame, at least 100 000
-    float initial_radius = 0.f;      // 0 = automatic: 1 % of the scene's bounding-sphere radius
-    float alpha = 2.f / 3.f;         // radius reduction (Hachisuka & Jensen 2009)
-    float traced_roughness = 0.f;    // only delta lobes traced: glossy ones are estimated and converge too
+    float initial_radius = 0.f;         // 0 = automatic: 1 % of the scene's bounding-sphere radius
+    float alpha = 2.f / 3.f;            // radius reduction (Hachisuka & Jensen 2009)
+    float traced_roughness = 0.f;       // only delta lobes traced: glossy ones are estimated and converge too
 
     static SppmSettings from_params(const Params& params);
     static const std::vector<ParamSpec>& specs();
     int64_t resolve_photons(double frame_pixels) const;
-    float resolve_radius(float scene_radius) const { return initial_radius > 0.f ? initial_radius : 0.01f * scene_radius; }
+    float resolve_radius(float scene_radius) const {
+        return initial_radius > 0.f ? initial_radius : 0.01f * scene_radius;
+    }
     float alpha_threshold() const { return traced_roughness * traced_roughness; }
 };
 

@@ -36,21 +36,25 @@ PhotonShot shoot_photons(const PhotonTracer& tracer, const EmitterSet& emitters,
             for (int64_t i = begin; i < end; ++i) {
                 sampler.start_pixel_sample(stream, uint32_t(uint64_t(key) >> 32), uint32_t(i));
                 uint32_t arrival = 0;
-                tracer.trace(sampler, kind, [&](const PhotonArrival& a) {
-                    const bool keep = store == PhotonStore::Global ? !a.caustic
-                                      : store == PhotonStore::Caustic ? a.caustic
-                                                                      : a.depth >= 1;
-                    ++arrival;
-                    if (!keep) return;
-                    const float u = float(hash32(uint32_t(mix64(key ^ (uint64_t(i) << 8) ^ arrival)) ) >> 8) * 0x1p-24f;
-                    Photon p;
-                    p.x = a.hit->p.x;
-                    p.y = a.hit->p.y;
-                    p.z = a.hit->p.z;
-                    p.flux = encode_flux(a.flux * inv_scale, u);
-                    p.dir = encode_direction(a.w);
-                    if (p.flux != 0u) out.photons.push_back(p);
-                }, out.stats);
+                tracer.trace(
+                    sampler, kind,
+                    [&](const PhotonArrival& a) {
+                        const bool keep = store == PhotonStore::Global    ? !a.caustic
+                                          : store == PhotonStore::Caustic ? a.caustic
+                                                                          : a.depth >= 1;
+                        ++arrival;
+                        if (!keep) return;
+                        const float u =
+                            float(hash32(uint32_t(mix64(key ^ (uint64_t(i) << 8) ^ arrival))) >> 8) * 0x1p-24f;
+                        Photon p;
+                        p.x = a.hit->p.x;
+                        p.y = a.hit->p.y;
+                        p.z = a.hit->p.z;
+                        p.flux = encode_flux(a.flux * inv_scale, u);
+                        p.dir = encode_direction(a.w);
+                        if (p.flux != 0u) out.photons.push_back(p);
+                    },
+                    out.stats);
             }
             return out;
         },

@@ -31,16 +31,16 @@
 namespace candela {
 
 struct PhotonRules {
-    int max_bounces = 12;          // scatterings of a photon path at most
+    int max_bounces = 12;  // scatterings of a photon path at most
     float alpha_threshold = k_default_traced_roughness * k_default_traced_roughness;
 };
 
 /// A photon arriving at a surface with estimated lobes.
 struct PhotonArrival {
     const SurfaceHit* hit = nullptr;
-    Vec3 w;              // unit: toward where the photon came from
-    Color flux{0.f};     // its flux weight on arrival
-    int depth = 0;       // scatterings before this arrival (0: straight from the emitter)
+    Vec3 w;                // unit: toward where the photon came from
+    Color flux{0.f};       // its flux weight on arrival
+    int depth = 0;         // scatterings before this arrival (0: straight from the emitter)
     bool caustic = false;  // depth ≥ 1 and every scattering so far traced
     uint32_t emitter = 0;  // EmitterSet index
 };
@@ -70,10 +70,9 @@ void PhotonTracer::trace(SobolSampler& sampler, PhotonPaths paths, Arrive&& arri
     const bool caustic_only = paths == PhotonPaths::CausticOnly;
     const BounceSample u0 = sampler.sample_bounce(0);
     ++stats.paths;
-    const LightPathStart start = caustic_only
-                                     ? (m_aimed ? m_aimed->sample(u0.light_select, u0.light, u0.bsdf, u0.roulette)
-                                                : LightPathStart{})
-                                     : start_light_path(m_emitters, u0.light_select, u0.light, u0.bsdf, u0.lobe);
+    const LightPathStart start =
+        caustic_only ? (m_aimed ? m_aimed->sample(u0.light_select, u0.light, u0.bsdf, u0.roulette) : LightPathStart{})
+                     : start_light_path(m_emitters, u0.light_select, u0.light, u0.bsdf, u0.lobe);
     if (!start.valid) return;
     Color beta = start.beta;
     Ray ray = start.ray;

@@ -33,9 +33,9 @@ struct SppmPixel {
     Color direct{0.f};  // Σ over iterations of emission + direct light
     Color tau{0.f};
     double alpha_sum = 0.0;
-    float n = 0.f;      // N
+    float n = 0.f;  // N
     float radius = 0.f;
-    Color shown{0.f};   // the estimate the film holds (L_(i−1))
+    Color shown{0.f};  // the estimate the film holds (L_(i−1))
     float shown_alpha = 0.f;
     VisiblePoint vp;
     float vp_alpha = 1.f;
@@ -44,7 +44,11 @@ struct SppmPixel {
 class Sppm {
 public:
     Sppm(const SppmSettings& s, const Scene& scene, Film& film, RenderContext& ctx)
-        : m_s(s), m_scene(scene), m_film(film), m_ctx(ctx), m_emitters(scene.lights(), scene.bounds()),
+        : m_s(s),
+          m_scene(scene),
+          m_film(film),
+          m_ctx(ctx),
+          m_emitters(scene.lights(), scene.bounds()),
           m_light_sampler(make_light_sampler("TREE", scene.lights())),
           m_pixels(size_t(film.width()) * film.height()) {
         m_rules.light_sampling = LightSampling::LightOnly;
@@ -61,9 +65,12 @@ public:
         plan.max_pass = 1;
         plan.time_limit = m_s.pixel.time_limit;
         plan.noise_threshold = m_s.pixel.noise_threshold;
-        run_progressive(m_ctx, plan, [&](int64_t begin, int64_t end) {
-            for (int64_t i = begin; i < end && !m_ctx.cancel.cancelled(); ++i) iteration(uint32_t(i));
-        }, NoiseSource());
+        run_progressive(
+            m_ctx, plan,
+            [&](int64_t begin, int64_t end) {
+                for (int64_t i = begin; i < end && !m_ctx.cancel.cancelled(); ++i) iteration(uint32_t(i));
+            },
+            NoiseSource());
     }
 
 private:
@@ -74,10 +81,12 @@ private:
         const float alpha_t = m_s.alpha_threshold();
         *alpha = 1.f;
         vp.valid = false;
-        const Vec2 u_pixel = std::visit([&](auto& c) {
-            c.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(it));
-            return c.sample_2d(dimension_index(Dim::Filter));
-        }, sampler);
+        const Vec2 u_pixel = std::visit(
+            [&](auto& c) {
+                c.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(it));
+                return c.sample_2d(dimension_index(Dim::Filter));
+            },
+            sampler);
         const Vec2 offset = m_s.pixel.filter.sample(u_pixel);
         const Camera& camera = m_scene.camera();
         const Vec2 u_lens = camera.has_aperture() ? get_2d(sampler, Dim::Lens) : Vec2{0.5f, 0.5f};
@@ -92,13 +101,17 @@ private:
             if (!lights.area_lights().empty()) {
                 uint32_t li;
                 float tl;
-                if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, found ? hit.t : ray.tmax, &li, &tl, bounce == 0))
+                if (m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, found ? hit.t : ray.tmax, &li, &tl,
+                                                 bounce == 0))
                     L += beta * std::get<AreaLight>(lights[li]).radiance;
             }
             if (!found) {
-                if (bounce == 0 && m_s.pixel.film_transparent) *alpha = 0.f;
-                else if (const WorldLight* world = lights.world()) L += beta * world->Le(ray.d);
-                else L += beta * lights.background();
+                if (bounce == 0 && m_s.pixel.film_transparent)
+                    *alpha = 0.f;
+                else if (const WorldLight* world = lights.world())
+                    L += beta * world->Le(ray.d);
+                else
+                    L += beta * lights.background();
                 return L;
             }
             if (bounce == 0 && !camera_hit(m_scene, ray, hit, nullptr, alpha)) return L;
@@ -109,9 +122,11 @@ private:
             const Bsdf& bsdf = sp.bsdf();
             const uint32_t traced = traced_lobe_mask(bsdf, alpha_t);
             const bool has_estimated = bsdf.size() > __builtin_popcount(traced);
-            const BounceSample u = std::visit([&](auto& c) {
-                return draw_bounce(c, bounce, k_need_light_select | k_need_light | k_need_lobe | k_need_roulette);
-            }, sampler);
+            const BounceSample u = std::visit(
+                [&](auto& c) {
+                    return draw_bounce(c, bounce, k_need_light_select | k_need_light | k_need_lobe | k_need_roulette);
+                },
+                sampler);
             // A vertex with both parts: the visible point with probability ∝ E's albedo, else on through T.
             float p_estimated = has_estimated ? 1.f : 0.f;
             if (has_estimated && traced != 0) {
@@ -131,12 +146,13 @@ private:
                     const LightSampleContext lc{hit.p, v.ns};
                     next_event_estimation(m_rules, m_light_sampler, lights, lc, u.light_select, u.light,
                                           [&](uint32_t li, float pmf, Vec2 ul) {
-                        const DirectLightSample d = sample_direct_light(
-                            m_scene, m_rules, hit, v, spawn, lc, part, wo_local, beta, li, pmf, ul,
-                            [&](const Vec3& wi) { return part.pdf(wo_local, wi); }, stats.rays);
-                        L += d.contribution;
-                        return d.visible;
-                    });
+                                              const DirectLightSample d = sample_direct_light(
+                                                  m_scene, m_rules, hit, v, spawn, lc, part, wo_local, beta, li, pmf,
+                                                  ul, [&](const Vec3& wi) { return part.pdf(wo_local, wi); },
+                                                  stats.rays);
+                                              L += d.contribution;
+                                              return d.visible;
+                                          });
                 }
                 vp.hit = hit;
                 vp.wo = wo;
@@ -162,25 +178,29 @@ private:
         const Film& film = m_film;
         const auto& tiles = film.tiles();
         // 1. Visible points and direct light.
-        parallel_for(m_ctx.threads, tiles.size(), [&](size_t t) {
-            const Tile& tile = tiles[t];
-            Sampler sampler = m_s.pixel.replicate_sampler(noise_replicate_of(it));
-            PathStats stats;
-            for (int y = tile.y0; y < tile.y1; ++y)
-                for (int x = tile.x0; x < tile.x1; ++x) {
-                    SppmPixel& p = m_pixels[size_t(y) * film.width() + x];
-                    float alpha = 1.f;
-                    Color L = camera_path(film.origin_x() + x, film.origin_y() + y, it, sampler, p.vp, &alpha, stats);
-                    ++stats.paths;
-                    if (!is_finite(L) || min_component(L) < 0.f) {
-                        ++stats.nan_samples;
-                        L = Color(0.f);
+        parallel_for(
+            m_ctx.threads, tiles.size(),
+            [&](size_t t) {
+                const Tile& tile = tiles[t];
+                Sampler sampler = m_s.pixel.replicate_sampler(noise_replicate_of(it));
+                PathStats stats;
+                for (int y = tile.y0; y < tile.y1; ++y)
+                    for (int x = tile.x0; x < tile.x1; ++x) {
+                        SppmPixel& p = m_pixels[size_t(y) * film.width() + x];
+                        float alpha = 1.f;
+                        Color L =
+                            camera_path(film.origin_x() + x, film.origin_y() + y, it, sampler, p.vp, &alpha, stats);
+                        ++stats.paths;
+                        if (!is_finite(L) || min_component(L) < 0.f) {
+                            ++stats.nan_samples;
+                            L = Color(0.f);
+                        }
+                        p.direct += L;
+                        p.alpha_sum += alpha;
                     }
-                    p.direct += L;
-                    p.alpha_sum += alpha;
-                }
-            stats.flush(m_ctx.counters);
-        }, &m_ctx.cancel);
+                stats.flush(m_ctx.counters);
+            },
+            &m_ctx.cancel);
         if (m_ctx.cancel.cancelled()) return;
 
         // 2. Photons.
@@ -226,15 +246,17 @@ private:
                             const float n_new = p.n + alpha * m;
                             const float r_new = p.radius * std::sqrt(n_new / (p.n + m));
                             const float shrink = (r_new * r_new) / (p.radius * p.radius);
-                            if (is_finite(phi)) p.tau = (p.tau + p.vp.beta * phi) * shrink;
-                            else p.tau = p.tau * shrink;
+                            if (is_finite(phi))
+                                p.tau = (p.tau + p.vp.beta * phi) * shrink;
+                            else
+                                p.tau = p.tau * shrink;
                             p.n = n_new;
                             p.radius = r_new;
                         }
                     }
                     const double iters = double(it) + 1.0;
-                    const Color L = p.direct / float(iters) +
-                                    p.tau / float(double(k_pi) * double(p.radius) * p.radius * m_emitted);
+                    const Color L =
+                        p.direct / float(iters) + p.tau / float(double(k_pi) * double(p.radius) * p.radius * m_emitted);
                     const float a = float(p.alpha_sum / iters);
                     // The film's mean of it + 1 entries becomes L: add (i+1)·L − i·L_prev.
                     PixelAccum& acc = out[size_t(y - tile.y0) * tile.width() + (x - tile.x0)];
