@@ -13,7 +13,7 @@ DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev
 
 FORMAT_FILES = $(shell find native tests bench -name '*.cpp' -o -name '*.h')
 
-.PHONY: format all deps build demo test bench microbench accuracy povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
+.PHONY: format all deps build demo test bench microbench skip-bench accuracy povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
 
 all: build
 
@@ -113,6 +113,10 @@ test-gui: build
 
 microbench: build
 	$(BUILD)/bin/candela_microbench
+
+# What each scene skip saves and AUTO's analysis share (docs/auto.md, "Skips"; about two minutes).
+skip-bench: build
+	$(BUILD)/bin/candela_bench_skips
 
 # Installs the built add-on (with its native module) into the user's Blender 3.4 add-on folder, after checking
 # that the copy is complete and its native module loads (bin/install-addon: a truncated .so crashes Blender).

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "integrators/scene_skips.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -109,6 +110,12 @@ void Session::run() {
         const std::string note = unhonoured_features_note(m_params.get<std::string>("integrator", "PATH"),
                                                           m_integrator->honoured_features(), scene);
         if (!note.empty()) m_log.add(note);
+        // What the scene does not need (AUTO logs its chosen integrator's after it chose).
+        const std::string integrator = m_params.get<std::string>("integrator", "PATH");
+        if (integrator != "AUTO") {
+            const std::string skipped = scene_skips_line(scene_skips(integrator, scene));
+            if (!skipped.empty()) m_log.add(skipped);
+        }
         RenderContext ctx{m_cancel, m_counters, m_threads, m_aovs.get(), &m_log};
         m_integrator->render(scene, *m_film, ctx);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();

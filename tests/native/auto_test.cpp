@@ -107,6 +107,37 @@ TEST(AutoPolicy, RulesWhoseIntegratorIsMissingAreSkipped) {
     EXPECT_TRUE(auto_rules().back().applies(SceneFeatures{}));
 }
 
+// The pilot's measurements in the policy: a measured caustic variance share decides first and says so; a pilot that
+// finds no caustic energy where it could have (all light from hittable emitters) overrides the static caustic paths;
+// from a point light the pilot (a path tracer) cannot see the caustic, so the static feature still decides.
+TEST(AutoPolicy, PilotSharesDecideWhereTheyCan) {
+    SceneFeatures f = features_of(glass_caustic());
+    f.pilot_measured = true;
+    f.pilot.total_mean = 1.0;
+    f.pilot.mean = {0.1, 0.5, 0.2, 0.2};
+    f.pilot.variance = {0.05, 0.2, 0.13, 0.62};
+    AutoChoice c = choice_of(f);
+    EXPECT_EQ(c.integrator, "BDPT");
+    EXPECT_EQ(c.rule, "measured_caustics_bdpt");
+    EXPECT_EQ(c.reason.rfind("62 % of the variance is caustic", 0), 0u) << c.reason;
+    f.pilot.variance = {0.05, 0.5, 0.3, 0.15};  // caustic, but not dominant: the static rule
+    EXPECT_EQ(choice_of(f).rule, "caustics_bdpt");
+    f.pilot.mean = {0.1, 0.6, 0.3, 0.0};
+    f.pilot.variance = {0.05, 0.6, 0.35, 0.0};
+    c = choice_of(f);
+    EXPECT_EQ(c.integrator, "PATH");
+    EXPECT_EQ(c.rule, "pilot_no_caustics");
+    EXPECT_NE(c.reason.find("0 % of the energy"), std::string::npos) << c.reason;
+
+    SceneFeatures point = features_of(lit_room(1, true));  // a point light: unhittable
+    ASSERT_TRUE(point.caustic_paths);
+    point.pilot_measured = true;
+    point.pilot.total_mean = 1.0;
+    point.pilot.mean = {0.0, 0.7, 0.3, 0.0};
+    point.pilot.variance = {0.0, 0.7, 0.3, 0.0};
+    EXPECT_EQ(choice_of(point).rule, "caustics_bdpt");
+}
+
 // AUTO renders the chosen integrator's image, bit for bit, and says what it chose in the log and the status.
 void expect_auto_is(SceneArrays arrays, const char* expected) {
     Params base = basic_params(16, 12, 4, 3);
@@ -135,13 +166,14 @@ void expect_auto_is(SceneArrays arrays, const char* expected) {
     const std::string method = counters.method.get();
     EXPECT_EQ(method.rfind(std::string("Auto: ") + expected + " \xe2\x80\x94 ", 0), 0u) << method;
     const std::vector<std::string> lines = log.take();
-    bool features = false, decision = false;
+    bool features = false, decision = false, pilot = false;
     for (const std::string& l : lines) {
         std::printf("%s\n", l.c_str());  // what the user's log shows (docs/auto.md quotes it)
         features |= l.rfind("Auto: scene features:", 0) == 0;
         decision |= l.rfind(std::string("Auto: chose ") + expected, 0) == 0;
+        pilot |= l.rfind("Auto: pilot ", 0) == 0;
     }
-    EXPECT_TRUE(features && decision) << expected;
+    EXPECT_TRUE(features && decision && pilot) << expected;
     EXPECT_EQ(counters.work_total.load(), 4);
 }
 

@@ -5,6 +5,8 @@
 
 #include "integrators/auto/auto_policy.h"
 #include "integrators/auto/scene_features.h"
+#include "integrators/path/path_settings.h"
+#include "integrators/scene_skips.h"
 
 namespace candela {
 
@@ -27,15 +29,26 @@ public:
     void render(const Scene& scene, Film& film, RenderContext& ctx) override {
         ctx.counters.stage.begin("Analysing scene", 0);
         const auto t0 = std::chrono::steady_clock::now();
-        const SceneFeatures features = analyse_scene(scene);
+        SceneFeatures features = analyse_scene(scene);
+        // The pilot (pilot.h): PATH's bounce limit and seed, over the film's region.
+        const PathSettings path = PathSettings::from_params(m_params);
+        features.pilot = run_pilot(scene,
+                                   pilot_settings_for(film.origin_x(), film.origin_y(), film.width(), film.height(),
+                                                      path.max_bounces, path.pixel.seed, ctx.threads),
+                                   &ctx.cancel);
+        features.pilot_measured = true;
         const AutoChoice choice = choose_integrator(features, &in_registry);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         ctx.counters.stage.end();
         ctx.log(features.summary());
-        char took[64];
-        std::snprintf(took, sizeof took, " (rule %s; analysis %.1f ms)", choice.rule.c_str(), ms);
+        ctx.log(features.pilot.summary());
+        char took[96];
+        std::snprintf(took, sizeof took, " (rule %s; analysis %.1f ms, of which pilot %.1f ms)", choice.rule.c_str(),
+                      ms, features.pilot.milliseconds);
         ctx.log("Auto: chose " + choice.integrator + " \xe2\x80\x94 " + choice.reason + took);
         ctx.counters.method.set("Auto: " + choice.integrator + " \xe2\x80\x94 " + choice.reason);
+        const std::string skipped = scene_skips_line(scene_skips(choice.integrator, scene));
+        if (!skipped.empty()) ctx.log(skipped);
         std::unique_ptr<Integrator> chosen = find_integrator(choice.integrator).create(m_params);
         ctx.counters.work_total = chosen->budget().total;
         chosen->render(scene, film, ctx);

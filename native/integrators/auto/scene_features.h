@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "integrators/auto/pilot.h"
 #include "scene/scene.h"
 
 namespace candela {
@@ -53,6 +54,10 @@ struct SceneFeatures {
     uint32_t hidden_ray_types = 0;   // Scene::hidden_ray_types(): k_ray_* bits some object is hidden from
 
     double scene_radius = 0.0;  // bounds().radius
+
+    /// The pilot render's measurements (pilot.h), when AUTO ran one (analyse_scene does not).
+    bool pilot_measured = false;
+    PilotResult pilot;
 
     double unhittable_power_share() const { return total_power > 0.0 ? unhittable_power / total_power : 0.0; }
     double small_power_share() const { return total_power > 0.0 ? small_power / total_power : 0.0; }

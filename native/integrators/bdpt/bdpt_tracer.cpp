@@ -58,6 +58,7 @@ void all_strategies(const BdptContext& c, Scratch& w, int nz, int ny, PathStats&
             // (1, 1), an emitter connected to the lens, is left to (0, 2), the camera ray that sees it: its weight
             // would be tiny wherever the emitter is visible, and strategy_weight counts paths of two vertices as (0, 2)'s.
             if (depth < 0 || depth > max_depth || (s == 0 && t == 1) || (s == 1 && t == 1)) continue;
+            if (s == 0 && !c.s0_strategies) continue;  // nothing a ray can hit emits: zero, not evaluated
             const StrategyResult r =
                 evaluate_strategy(c, w.light, s, w.camera, t, w.camera_numbers, w.light_numbers, nullptr, stats);
             record(r, s, t);

@@ -11,6 +11,7 @@
 #include "integrators/bdpt/strategy_images.h"
 #include "integrators/bdpt/subpaths.h"
 #include "integrators/camera_tiles.h"
+#include "integrators/scene_skips.h"
 
 namespace candela {
 
@@ -25,7 +26,7 @@ StrategyRecording& strategy_recording();
 class BdptTracer {
 public:
     BdptTracer(const Scene& scene, const BdptSettings& settings, const EmitterSet& emitters)
-        : m_context{scene, emitters, settings} {}
+        : m_context{scene, emitters, settings, has_hittable_emission(scene)} {}
 
     /// The camera sample's radiance (strategies t ≥ 2); the t = 1 strategies are splatted into `sink`.
     Color Li(const Ray& camera_ray, Sampler& sampler, PathStats& stats, float* alpha, AovSample* aov,

@@ -31,6 +31,9 @@ struct BdptContext {
     const Scene& scene;
     const EmitterSet& emitters;
     const BdptSettings& settings;
+    /// Some emitter a ray can hit exists (has_hittable_emission): else the s = 0 strategies carry no energy and are
+    /// not evaluated (integrators/scene_skips.h, "bdpt_no_s0").
+    bool s0_strategies = true;
     int max_camera() const { return settings.max_bounces + 3; }        // z₀, max_bounces + 1 scattering, an emitter
     int max_light() const { return settings.max_bounces + 2; }         // y₀ and max_bounces + 1 scattering
     int light_dim_bounce() const { return settings.max_bounces + 2; }  // after the camera subpath's dimensions

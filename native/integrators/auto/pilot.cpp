@@ -1,0 +1,368 @@
+// The pilot's path tracer and its tallies (pilot.h). A compact copy of PATH's estimator at its defaults (MIS with
+// the power heuristic, solid-angle light sampling, one shadow ray per vertex, the light tree) without the Light
+// Paths settings, branching or data passes: the pilot estimates where light comes from, not the final image.
+#include "integrators/auto/pilot.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+#include "core/rng.h"
+#include "integrators/common/mis.h"
+#include "integrators/common/surface_vertex.h"
+#include "integrators/ray_types.h"
+#include "integrators/shadow_ray.h"
+#include "lights/light.h"
+#include "lights/light_sampler.h"
+
+namespace candela {
+
+namespace {
+
+constexpr float k_inf = std::numeric_limits<float>::infinity();
+constexpr MisHeuristic k_heuristic = MisHeuristic::Power;
+constexpr LightPdfMode k_pdf_mode = LightPdfMode::SolidAngle;
+constexpr int k_transmissive_probe_surfaces = 16;  // surfaces a blocked shadow ray's probe may cross
+
+class Uniform {
+public:
+    Uniform(uint64_t seed, uint64_t stream) : m_rng(seed, stream) {}
+    float next() { return std::min(float(m_rng.next_u32()) * 0x1p-32f, 0x1.fffffep-1f); }
+    Vec2 next2() {
+        const float a = next();
+        return {a, next()};
+    }
+
+private:
+    Pcg32 m_rng;
+};
+
+/// One path's contributions, by class.
+struct PathTally {
+    Color c[k_path_classes] = {Color(0.f), Color(0.f), Color(0.f), Color(0.f)};
+    Color through_transmissive{0.f};
+    Color specular_after_diffuse{0.f};
+};
+
+/// What the path so far says about the class of light its next vertex receives.
+struct PathHistory {
+    int non_delta = 0;                // non-delta scatterings so far
+    bool delta_since = false;         // a delta scatter since the last non-delta one
+    bool diffuse_then_delta = false;  // a delta scatter after a diffuse one (Cycles' caustics filter)
+    bool diffuse_seen = false;
+};
+
+PathClass emission_class(const PathHistory& h) {
+    if (h.non_delta == 0) return PathClass::Emitted;
+    if (h.delta_since) return PathClass::Caustic;
+    return h.non_delta == 1 ? PathClass::Direct : PathClass::Indirect;
+}
+
+bool is_transmissive(const Scene& scene, uint32_t material) {
+    return (scene.material_flags(material) & (k_bsdf_transmission | k_bsdf_transparent)) != 0;
+}
+
+/// Whether the segment from `origin` toward light sample ls is blocked only by transmissive surfaces: walks the
+/// hits along it (at most k_transmissive_probe_surfaces), false at the first opaque one.
+bool blocked_only_by_transmissive(const Scene& scene, const SurfaceHit& from, const Vec3& origin, const LightSample& ls,
+                                  uint64_t& rays) {
+    Vec3 o = origin;
+    PrimitiveRef skip = from.primitive;
+    const Vec3 light_point = from.p + ls.wi * ls.dist;
+    for (int i = 0; i < k_transmissive_probe_surfaces; ++i) {
+        const float tmax = std::isfinite(ls.dist) ? length(light_point - o) * (1.f - k_shadow_epsilon) : k_inf;
+        Ray r{o, ls.wi, 0.f, tmax, k_ray_shadow};
+        SurfaceHit h;
+        ++rays;
+        if (!scene.intersect(r, &h, skip)) return true;
+        if (!is_transmissive(scene, h.material)) return false;
+        o = h.p;
+        skip = h.primitive;
+    }
+    return false;
+}
+
+class PilotTracer {
+public:
+    PilotTracer(const Scene& scene, int max_bounces)
+        : m_scene(scene),
+          m_lights(scene.lights()),
+          m_sampler(scene.light_sampler(parse_light_selection("TREE"))),
+          m_max_bounces(max_bounces),
+          m_transmissive(scene_has_transmission(scene)) {}
+
+    void trace(Ray ray, Uniform& u, PathTally& t, uint64_t& rays) const {
+        Color beta(1.f);
+        PathHistory h;
+        bool last_delta = true;  // the camera ray: emission it finds counts with weight 1
+        float last_pdf = 0.f;
+        LightSampleContext last_ctx{};
+        PrimitiveRef from;
+        for (int bounce = 0;; ++bounce) {
+            SurfaceHit hit;
+            ++rays;
+            const bool found = m_scene.intersect(ray, &hit, from);
+            // Area lights before the surface (they are not occluders).
+            uint32_t li;
+            float tl;
+            if (!m_lights.area_lights().empty() &&
+                m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, found ? hit.t : ray.tmax, &li, &tl,
+                                             ray.type == k_ray_camera))
+                add_emission(t, h, beta, std::get<AreaLight>(m_lights[li]).radiance, last_delta, last_pdf, last_ctx, li,
+                             ray.d, tl);
+            if (!found) {
+                if (const WorldLight* world = m_lights.world())
+                    add_emission(t, h, beta, world->Le(ray.d), last_delta, last_pdf, last_ctx,
+                                 uint32_t(m_lights.world_light()), ray.d, k_inf);
+                else if (!is_black(m_lights.background()))
+                    add(t, h, emission_class(h), beta * m_lights.background());
+                return;
+            }
+            const ShadingPoint sp = m_scene.shade(hit, -ray.d, nullptr);
+            if (!is_black(sp.emission)) {
+                if (hit.light >= 0)
+                    add_emission(t, h, beta, sp.emission, last_delta, last_pdf, last_ctx, uint32_t(hit.light), ray.d,
+                                 hit.t);
+                else
+                    add(t, h, emission_class(h), beta * sp.emission);
+            }
+            if (bounce > m_max_bounces) return;  // max_bounces scatterings: the last vertex only emits
+            const Bsdf& bsdf = sp.bsdf();
+            const Vec3 wo = -ray.d;
+            const SurfaceVertex v = SurfaceVertex::at(hit, sp.ns, wo);
+            const Vec3 wo_local = v.frame.to_local(wo);
+            SpawnPoints spawn(hit.p, v.ng);
+            const LightSampleContext ctx{hit.p, v.ns};
+            // Next-event estimation: the light arrives directly at this (non-delta) vertex.
+            if (!m_lights.empty() && bsdf.has_non_delta()) {
+                PathHistory here = h;
+                ++here.non_delta;
+                here.delta_since = false;
+                next_event(t, here, hit, v, spawn, ctx, bsdf, wo_local, beta, u, rays);
+            }
+            const float uc = u.next();
+            const BsdfSample bs = bsdf.sample(wo_local, u.next2(), uc);
+            if (!bs.valid() || is_black(bs.f)) return;
+            const Vec3 wi = v.frame.to_world(bs.wi);
+            const float cos_g = dot(wi, v.ng);
+            if (leaks(cos_g, bs.wi.z)) return;
+            beta *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
+            if (bs.is_transparent()) {
+                // A pass-through is not a scattering: the class and the MIS origin stay those of the vertex before.
+                --bounce;
+            } else if (bs.is_delta()) {
+                h.delta_since = true;
+                h.diffuse_then_delta |= h.diffuse_seen;
+                last_delta = true;
+            } else {
+                ++h.non_delta;
+                h.delta_since = false;
+                h.diffuse_seen |= (bs.flags & k_bsdf_diffuse) != 0;
+                last_delta = false;
+                last_pdf = bs.pdf;
+                last_ctx = ctx;
+            }
+            if (bounce >= 2) {  // Russian roulette from the third bounce on (survival: β's largest component)
+                const float survive = std::min(1.f, max_component(beta));
+                if (!(survive > 0.f) || u.next() >= survive) return;
+                beta /= survive;
+            }
+            if (!is_finite(beta) || is_black(beta)) return;
+            ray = Ray{spawn.origin(cos_g > 0.f), wi, 0.f, k_inf, continuation_ray_type(bs, ray.type)};
+            from = hit.primitive;
+        }
+    }
+
+private:
+    static bool scene_has_transmission(const Scene& scene) {
+        for (uint32_t m = 0; m < scene.materials().size(); ++m)
+            if (is_transmissive(scene, m)) return true;
+        return false;
+    }
+
+    static void add(PathTally& t, const PathHistory& h, PathClass c, const Color& L) {
+        if (!is_finite(L)) return;
+        t.c[int(c)] += L;
+        if (h.diffuse_then_delta) t.specular_after_diffuse += L;
+    }
+
+    void add_emission(PathTally& t, const PathHistory& h, const Color& beta, const Color& Le, bool last_delta,
+                      float last_pdf, const LightSampleContext& last_ctx, uint32_t light, const Vec3& d,
+                      float dist) const {
+        float w = 1.f;
+        if (!last_delta) {
+            const float p_light =
+                m_sampler.nee_pmf(last_ctx, light) * light_pdf_li(m_lights[light], last_ctx, d, dist, k_pdf_mode);
+            w = mis_weight(k_heuristic, last_pdf, p_light);
+        }
+        add(t, h, emission_class(h), beta * Le * w);
+    }
+
+    void next_event(PathTally& t, const PathHistory& h, const SurfaceHit& hit, const SurfaceVertex& v,
+                    SpawnPoints& spawn, const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local,
+                    const Color& beta, Uniform& u, uint64_t& rays) const {
+        float pmf = 0.f;
+        const uint32_t li = m_sampler.select(ctx, u.next(), &pmf);
+        const Vec2 ul = u.next2();
+        if (!(pmf > 0.f)) return;
+        const LightSample ls = light_sample_li(m_lights[li], ctx, ul, k_pdf_mode);
+        if (!ls.valid()) return;
+        const Vec3 wi_local = v.frame.to_local(ls.wi);
+        const float cos_g = dot(ls.wi, v.ng);
+        if (leaks(cos_g, wi_local.z)) return;
+        const Color f = bsdf.f(wo_local, wi_local) * std::fabs(wi_local.z);
+        if (is_black(f)) return;
+        const float density = pmf * ls.pdf;
+        const float w = ls.is_delta ? 1.f : mis_weight(k_heuristic, density, bsdf.pdf(wo_local, wi_local));
+        const Color c = beta * f * ls.Li * (w / density);
+        const Vec3 origin = spawn.origin(cos_g > 0.f);
+        ++rays;
+        if (!shadow_ray_blocked(m_scene, hit, origin, ls)) {
+            add(t, h, h.non_delta == 1 ? PathClass::Direct : PathClass::Indirect, c);
+        } else if (m_transmissive && blocked_only_by_transmissive(m_scene, hit, origin, ls, rays) && is_finite(c)) {
+            t.through_transmissive += c;
+        }
+    }
+
+    const Scene& m_scene;
+    const LightSet& m_lights;
+    const LightSampler& m_sampler;
+    int m_max_bounces;
+    bool m_transmissive;
+};
+
+/// One pilot pixel's sums over its paths (luminance).
+struct PixelSums {
+    double s[k_path_classes] = {}, s2[k_path_classes] = {};
+    double total = 0.0, total2 = 0.0, through = 0.0, sad = 0.0;
+};
+
+double sample_variance(double s, double s2, int n) { return n > 1 ? std::max(0.0, (s2 - s * s / n) / (n - 1)) : 0.0; }
+
+}  // namespace
+
+const char* path_class_name(PathClass c) {
+    switch (c) {
+    case PathClass::Emitted: return "emitted";
+    case PathClass::Direct: return "direct";
+    case PathClass::Indirect: return "indirect";
+    default: return "caustic";
+    }
+}
+
+PilotSettings pilot_settings_for(int x0, int y0, int width, int height, int max_bounces, uint64_t seed, int threads) {
+    PilotSettings s;
+    const int short_side = std::min(width, height);
+    s.downscale = short_side >= 128 ? 4 : short_side >= 64 ? 2 : 1;
+    s.samples = 8;
+    s.max_bounces = max_bounces;
+    s.seed = seed;
+    s.threads = threads;
+    s.x0 = x0;
+    s.y0 = y0;
+    s.width = width;
+    s.height = height;
+    return s;
+}
+
+double PilotResult::variance_share(PathClass c) const {
+    double sum = 0.0;
+    for (double v : variance) sum += v;
+    return sum > 0.0 ? variance[int(c)] / sum : 0.0;
+}
+
+std::string PilotResult::summary() const {
+    char buf[512];
+    auto pct = [](double x) { return 100.0 * x; };
+    std::snprintf(buf, sizeof buf,
+                  "Auto: pilot %d px x %d paths (%.1f ms): energy emitted %.0f %%, direct %.0f %%, indirect %.0f %%, "
+                  "caustic %.0f %%; variance emitted %.0f %%, direct %.0f %%, indirect %.0f %%, caustic %.0f %%; "
+                  "through transmissive %.0f %%; fireflies %.0f %% of the variance in 1 %% of the pixels",
+                  pixels, samples, milliseconds, pct(energy_share(PathClass::Emitted)),
+                  pct(energy_share(PathClass::Direct)), pct(energy_share(PathClass::Indirect)),
+                  pct(energy_share(PathClass::Caustic)), pct(variance_share(PathClass::Emitted)),
+                  pct(variance_share(PathClass::Direct)), pct(variance_share(PathClass::Indirect)),
+                  pct(variance_share(PathClass::Caustic)), pct(through_transmissive_share()), pct(firefly_share));
+    return buf;
+}
+
+PilotResult run_pilot(const Scene& scene, const PilotSettings& s, const CancelToken* cancel) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int d = std::max(1, s.downscale);
+    const int pw = std::max(1, (s.width + d - 1) / d), ph = std::max(1, (s.height + d - 1) / d);
+    const int n = std::max(1, s.samples);
+    const PilotTracer tracer(scene, s.max_bounces);
+    const Camera& camera = scene.camera();
+    std::vector<PixelSums> pixels(size_t(pw) * ph);
+    std::vector<uint64_t> row_rays(size_t(ph), 0);
+    parallel_for(
+        resolve_thread_count(s.threads), size_t(ph),
+        [&](size_t row) {
+            const int py = int(row);
+            for (int px = 0; px < pw; ++px) {
+                const size_t index = size_t(py) * pw + px;
+                Uniform u(hash_combine(s.seed, 0x70696c6f74ULL), index);  // "pilot"
+                PixelSums& acc = pixels[index];
+                // The block of film pixels this pilot pixel covers (the last ones clipped to the film).
+                const float bx = float(s.x0 + px * d), by = float(s.y0 + py * d);
+                const float bw = float(std::min(d, s.width - px * d)), bh = float(std::min(d, s.height - py * d));
+                for (int k = 0; k < n; ++k) {
+                    const Vec2 up = u.next2();
+                    const Vec2 ul = u.next2();
+                    const Ray ray = camera.generate_ray({bx + up.x * bw, by + up.y * bh}, ul);
+                    PathTally t;
+                    if (ray.tmax > ray.tmin) tracer.trace(ray, u, t, row_rays[row]);
+                    double total = 0.0;
+                    for (int c = 0; c < k_path_classes; ++c) {
+                        const double l = luminance(t.c[c]);
+                        acc.s[c] += l;
+                        acc.s2[c] += l * l;
+                        total += l;
+                    }
+                    acc.total += total;
+                    acc.total2 += total * total;
+                    acc.through += luminance(t.through_transmissive);
+                    acc.sad += luminance(t.specular_after_diffuse);
+                }
+            }
+        },
+        cancel);
+
+    PilotResult r;
+    r.pixels = pw * ph;
+    r.samples = n;
+    const double P = double(r.pixels);
+    std::vector<double> pixel_variance(pixels.size());
+    double class_var_of_mean[k_path_classes] = {}, var_of_mean = 0.0;
+    for (size_t i = 0; i < pixels.size(); ++i) {  // in pixel order: deterministic sums
+        const PixelSums& p = pixels[i];
+        for (int c = 0; c < k_path_classes; ++c) {
+            r.mean[c] += p.s[c] / n / P;
+            const double v = sample_variance(p.s[c], p.s2[c], n);
+            r.variance[c] += v;
+            class_var_of_mean[c] += v / n / (P * P);
+        }
+        pixel_variance[i] = sample_variance(p.total, p.total2, n);
+        r.total_variance += pixel_variance[i];
+        var_of_mean += pixel_variance[i] / n / (P * P);
+        r.total_mean += p.total / n / P;
+        r.through_transmissive_mean += p.through / n / P;
+        r.specular_after_diffuse_mean += p.sad / n / P;
+    }
+    r.standard_error = std::sqrt(var_of_mean);
+    for (int c = 0; c < k_path_classes; ++c) r.class_standard_error[c] = std::sqrt(class_var_of_mean[c]);
+    const size_t top = std::max<size_t>(1, pixel_variance.size() / 100);
+    std::partial_sort(pixel_variance.begin(), pixel_variance.begin() + long(top), pixel_variance.end(),
+                      std::greater<double>());
+    double top_sum = 0.0;
+    for (size_t i = 0; i < top; ++i) top_sum += pixel_variance[i];
+    r.firefly_share = r.total_variance > 0.0 ? top_sum / r.total_variance : 0.0;
+    for (uint64_t x : row_rays) r.rays += x;
+    r.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+}
+
+}  // namespace candela
