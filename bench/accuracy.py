@@ -227,6 +227,7 @@ def main():
             integrator = integrator_of((label, engine, settings))
             setup = path_setup if engine == "CANDELA" and integrator not in (None, "PATH") else None
             results[(scene, label)] = measure(scene, label, runs[label], refs[engine], rows, setup)
+            results[(scene, label)]["runs"] = runs[label]
             if integrator == "PATH" and path_setup is None:
                 path_setup = results[(scene, label)]["setup"]
     write_outputs(scene_names, scene_configs, results, rows, started)
@@ -373,9 +374,73 @@ def write_outputs(scene_names, configs, results, rows, started):
         md += scene_tables(scene, configs[scene], results, n_max)
         md.append("")
         plot(scene, configs[scene], results, plots / f"{scene}.png")
+    md += auto_table(scene_names, configs, results)
     md += ["Raw measurements: [accuracy/measurements.csv](accuracy/measurements.csv). "
            f"The run took {time.time() - started:.0f} s.", ""]
     (docs / "accuracy.md").write_text("\n".join(md))
+
+
+def error_at(p, t):
+    """A configuration's rel. RMSE at time t: log-log interpolation between its measured points, and beyond them
+    the plain Monte Carlo slope −0.5 from the nearest end (an equal-time comparison needs every configuration at
+    the same time, which the sample counts do not give)."""
+    pts = [(x, e) for x, e in zip(p["time"], p["rrmse"]) if x > 0 and e > 0]
+    if not pts or t <= 0:
+        return None
+    if t <= pts[0][0]:
+        return pts[0][1] * (t / pts[0][0]) ** -0.5
+    if t >= pts[-1][0]:
+        return pts[-1][1] * (t / pts[-1][0]) ** -0.5
+    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+        if t0 <= t <= t1:
+            w = math.log(t / t0) / math.log(t1 / t0) if t1 > t0 else 0.0
+            return math.exp(math.log(e0) + w * (math.log(e1) - math.log(e0)))
+    return None
+
+
+AUTO_TARGETS = (1.25, 1.05)  # AUTO's error at equal time: ≤ 1.25× the best single integrator's, ≤ 1.05× PATH's
+
+
+def auto_table(scene_names, configs, results):
+    """The acceptance table of issue 19 (docs/auto.md): per scene, AUTO's choice, its rel. RMSE at equal time (its
+    own time at its largest sample count) divided by the best single Candela integrator's, by PATH's (the default
+    sampler's) and by Cycles', and the analysis (static features + pilot) as a share of that render's wall time."""
+    rows = []
+    for scene in scene_names:
+        labels = [c[0] for c in configs[scene]]
+        if "Candela AUTO" not in labels:
+            continue
+        a = results[(scene, "Candela AUTO")]
+        t = a["time"][-1]
+        e_auto = error_at(a, t)
+        singles = {label: error_at(results[(scene, label)], t) for label in labels
+                   if label.startswith("Candela ") and label != "Candela AUTO"}
+        singles = {k: v for k, v in singles.items() if v}
+        best = min(singles, key=singles.get) if singles else None
+        path = next((k for k in ("Candela PATH SOBOL", "Candela PATH") if k in singles), None)
+        if path is None:
+            path = next((k for k in singles if k.startswith("Candela PATH")), None)
+        cycles = error_at(results[(scene, "Cycles")], t) if "Cycles" in labels else None
+        last = a["runs"][-1] if a.get("runs") else {}
+        share = (last["analysis_ms"] / 1e3 / last["wall_seconds"]
+                 if last.get("analysis_ms") is not None and last.get("wall_seconds") else None)
+
+        def r(x):
+            return f"{e_auto / x:.2f}" if e_auto and x else "—"
+        rows.append(f"| {scene} | {last.get('choice', '?')} | {r(singles.get(best))} ({best or '—'}) | "
+                    f"{r(singles.get(path))} | {r(cycles)} | "
+                    f"{'—' if share is None else f'{100 * share:.1f} %'} |")
+    if not rows:
+        return []
+    return ["## AUTO at equal time", "",
+            "Issue 19's acceptance table: AUTO's relative RMSE at its own time for the largest sample count, divided "
+            "by each configuration's at the same time (log-log interpolation between measured points, slope −0.5 "
+            f"beyond them); targets ≤ {AUTO_TARGETS[0]}× the best single integrator's and ≤ {AUTO_TARGETS[1]}× "
+            "PATH's. The analysis share is AUTO's logged analysis time (static features and pilot) over that "
+            "render's wall time. These scenes are the ones the policy was written on; the held-out set is not "
+            "part of this report yet.", "",
+            "| scene | AUTO's choice | ratio to best (which) | ratio to PATH | ratio to Cycles | analysis share |",
+            "|---|---|---|---|---|---|", *rows, ""]
 
 
 if __name__ == "__main__":

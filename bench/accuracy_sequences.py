@@ -15,6 +15,7 @@ Prints one line "ACCURACY_SEQUENCES_JSON {...}".
 import argparse
 import json
 import os
+import re
 import sys
 
 import bpy
@@ -38,6 +39,23 @@ def parse_args():
     ap.add_argument("--out", required=True)
     ap.add_argument("--config", action="append", default=[], help="LABEL|ENGINE|key=value,... (repeatable)")
     return ap.parse_args(argv)
+
+
+def auto_decision(engine):
+    """AUTO's choice and analysis time from the last render's status and log (empty for other integrators):
+    {"method": "Auto: BDPT — …", "choice": "BDPT", "analysis_ms": 12.3}."""
+    if engine != "CANDELA":
+        return {}
+    stats = sys.modules["candela.render_loop"].last_render_stats
+    method = stats.get("method") or ""
+    if not method.startswith("Auto: "):
+        return {}
+    out = {"method": method, "choice": method[len("Auto: "):].split(" ", 1)[0]}
+    for line in stats.get("info", []):
+        m = re.search(r"; analysis ([0-9.]+) ms", line)
+        if line.startswith("Auto: chose ") and m:
+            out["analysis_ms"] = float(m.group(1))
+    return out
 
 
 def main():
@@ -71,7 +89,7 @@ def main():
                 path = os.path.join(a.out, f"{a.scene}_{label.replace(' ', '_')}_{n}.exr")
                 wall, cpu, _ = render(scene, engine, n, path)
                 runs.append({"configuration": label, "repeat": rep, "samples": n, "cpu_seconds": cpu,
-                             "wall_seconds": wall, "exr": path})
+                             "wall_seconds": wall, "exr": path, **auto_decision(engine)})
     print("ACCURACY_SEQUENCES_JSON " + json.dumps({"scene": a.scene, "runs": runs}), flush=True)
 
 

@@ -124,6 +124,7 @@ class RenderRecord:
 
     def __init__(self, publish=True):
         self.warnings = []
+        self.info = []      # Info-level log lines (INFO_PREFIXES)
         self.publish = publish   # final renders publish last_render_stats; previews do not
 
 
@@ -134,10 +135,20 @@ def _warn(engine, message, record):
     engine.report({'WARNING'}, message)
 
 
+# Native log lines that inform rather than warn (what the scene lets the integrators skip, AUTO's features, pilot and
+# choice — the choice is in the status line too): Info reports, kept out
+# of the warnings and the status line.
+INFO_PREFIXES = ("Skipped, the scene does not need them", "Auto: ")
+
+
 def _forward_log(engine, session, record):
     for entry in session.take_log():
         message = entry[-1] if isinstance(entry, (tuple, list)) else entry
-        _warn(engine, f"Candela: {message}", record)
+        if message.startswith(INFO_PREFIXES):
+            record.info.append(message)
+            engine.report({'INFO'}, f"Candela: {message}")
+        else:
+            _warn(engine, f"Candela: {message}", record)
 
 
 def with_latest_warning(line, record):
@@ -214,7 +225,8 @@ def drive(engine, session, layer="", integrator="PATH", background=False, clock=
         global last_render_stats
         last_render_stats = dict(session.stats(), samples_done=progress.get("samples_done"),
                                  phase=progress.get("phase"), stop_reason=progress.get("stop_reason"),
-                                 relative_error=progress.get("relative_error"), warnings=list(record.warnings))
+                                 relative_error=progress.get("relative_error"), warnings=list(record.warnings),
+                                 info=list(record.info), method=progress.get("method"))
     if session.error:
         raise RuntimeError(name_objects(session.error, names))
     engine.update_progress(1.0)
