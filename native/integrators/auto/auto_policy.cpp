@@ -23,22 +23,12 @@ bool nothing_lit(const SceneFeatures& f) { return f.light_count == 0 && f.world 
 bool path_only_visibility(const SceneFeatures& f) { return (f.hidden_ray_types & k_path_only_visibility) != 0; }
 // The pilot's thresholds (docs/auto.md, "Pilot"): guesses, to be tuned by the acceptance measurement.
 constexpr double k_caustic_variance_share = 0.5;  // measured caustic variance share that calls for BDPT
-constexpr double k_no_caustic_share = 0.02;       // below it (energy and variance), a measured caustic is absent
 
 bool measured_caustics(const SceneFeatures& f) {
     return f.pilot_measured && f.pilot.variance_share(PathClass::Caustic) >= k_caustic_variance_share;
 }
-// Static caustic paths, unless the pilot measured none where it could have seen them: with all light from hittable
-// (small) emitters a path tracer does find L S+ D paths, so a pilot share near 0 means the light does not reach the
-// delta surfaces. From unhittable lights the pilot (a path tracer) cannot see them: the static feature decides.
-bool caustics(const SceneFeatures& f) {
-    if (!f.caustic_paths) return false;
-    if (!f.pilot_measured || f.unhittable_power > 0.0) return true;
-    return f.pilot.energy_share(PathClass::Caustic) >= k_no_caustic_share ||
-           f.pilot.variance_share(PathClass::Caustic) >= k_no_caustic_share;
-}
-bool pilot_found_no_caustic(const SceneFeatures& f) { return f.caustic_paths && !caustics(f); }
-bool specular_large_lights(const SceneFeatures& f) { return f.specular_area > 0.0 && !caustics(f); }
+bool caustics(const SceneFeatures& f) { return f.caustic_paths; }
+bool specular_large_lights(const SceneFeatures& f) { return f.specular_area > 0.0 && !f.caustic_paths; }
 bool always(const SceneFeatures&) { return true; }
 
 std::string caustic_reason(const SceneFeatures& f) {
@@ -70,12 +60,6 @@ const std::vector<AutoRule>& auto_rules() {
          [](const SceneFeatures& f) -> std::string {
              return "delta surfaces (" + percent(f.area_share(f.specular_area)) +
                     " of the area) lit only by large lights a path tracer hits";
-         }},
-        {"pilot_no_caustics", "PATH", &pilot_found_no_caustic,
-         [](const SceneFeatures& f) -> std::string {
-             return "caustic paths could exist but the pilot measured " +
-                    percent(f.pilot.energy_share(PathClass::Caustic)) + " of the energy and " +
-                    percent(f.pilot.variance_share(PathClass::Caustic)) + " of the variance in them";
          }},
         {"default", "PATH", &always,
          [](const SceneFeatures&) -> std::string {

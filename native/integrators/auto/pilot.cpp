@@ -26,6 +26,9 @@ constexpr float k_inf = std::numeric_limits<float>::infinity();
 constexpr MisHeuristic k_heuristic = MisHeuristic::Power;
 constexpr LightPdfMode k_pdf_mode = LightPdfMode::SolidAngle;
 constexpr int k_transmissive_probe_surfaces = 16;  // surfaces a blocked shadow ray's probe may cross
+constexpr int k_transparent_passes = 64;           // Transparent surfaces a pilot path may pass through
+constexpr int k_caustic_probes = 8;                // BSDF samples probing for caustics at a path's first non-delta vertex
+constexpr int k_probe_chain = 16;                  // delta bounces a probe follows at most
 
 class Uniform {
 public:
@@ -92,7 +95,8 @@ public:
           m_lights(scene.lights()),
           m_sampler(scene.light_sampler(parse_light_selection("TREE"))),
           m_max_bounces(max_bounces),
-          m_transmissive(scene_has_transmission(scene)) {}
+          m_transmissive(scene_has_transmission(scene)),
+          m_has_delta(scene_has_delta(scene)) {}
 
     void trace(Ray ray, Uniform& u, PathTally& t, uint64_t& rays) const {
         Color beta(1.f);
@@ -101,6 +105,7 @@ public:
         float last_pdf = 0.f;
         LightSampleContext last_ctx{};
         PrimitiveRef from;
+        int passes = 0;  // Transparent pass-throughs
         for (int bounce = 0;; ++bounce) {
             SurfaceHit hit;
             ++rays;
@@ -118,7 +123,7 @@ public:
                     add_emission(t, h, beta, world->Le(ray.d), last_delta, last_pdf, last_ctx,
                                  uint32_t(m_lights.world_light()), ray.d, k_inf);
                 else if (!is_black(m_lights.background()))
-                    add(t, h, emission_class(h), beta * m_lights.background());
+                    add_found(t, h, beta * m_lights.background());
                 return;
             }
             const ShadingPoint sp = m_scene.shade(hit, -ray.d, nullptr);
@@ -127,7 +132,7 @@ public:
                     add_emission(t, h, beta, sp.emission, last_delta, last_pdf, last_ctx, uint32_t(hit.light), ray.d,
                                  hit.t);
                 else
-                    add(t, h, emission_class(h), beta * sp.emission);
+                    add_found(t, h, beta * sp.emission);
             }
             if (bounce > m_max_bounces) return;  // max_bounces scatterings: the last vertex only emits
             const Bsdf& bsdf = sp.bsdf();
@@ -143,6 +148,8 @@ public:
                 here.delta_since = false;
                 next_event(t, here, hit, v, spawn, ctx, bsdf, wo_local, beta, u, rays);
             }
+            if (h.non_delta == 0 && bsdf.has_non_delta() && m_has_delta)
+                probe_caustics(t, beta, v, spawn, bsdf, wo_local, bounce, from_of(hit), u, rays);
             const float uc = u.next();
             const BsdfSample bs = bsdf.sample(wo_local, u.next2(), uc);
             if (!bs.valid() || is_black(bs.f)) return;
@@ -151,7 +158,10 @@ public:
             if (leaks(cos_g, bs.wi.z)) return;
             beta *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
             if (bs.is_transparent()) {
-                // A pass-through is not a scattering: the class and the MIS origin stay those of the vertex before.
+                // A pass-through is not a scattering: the class and the MIS origin stay those of the vertex before
+                // (the MIS distance is taken from the transparent surface, not summed as PATH does: a small bias in
+                // the pilot's weights behind Transparent surfaces only).
+                if (++passes > k_transparent_passes) return;
                 --bounce;
             } else if (bs.is_delta()) {
                 h.delta_since = true;
@@ -177,10 +187,92 @@ public:
     }
 
 private:
+    static PrimitiveRef from_of(const SurfaceHit& hit) { return hit.primitive; }
+
+    /// The caustic light reaching this vertex — the first where the path can scatter non-delta — estimated by
+    /// k_caustic_probes BSDF samples, each followed through delta bounces only to the emitter it finds (weight 1: no
+    /// other strategy samples a path through a delta vertex), within the same bounce limit. A caustic is rare for a
+    /// path tracer (its rays must hit the light through the glass): splitting here, where the image sees it,
+    /// measures it with k_caustic_probes times the rays of one path.
+    void probe_caustics(PathTally& t, const Color& beta, const SurfaceVertex& v, SpawnPoints& spawn, const Bsdf& bsdf,
+                        const Vec3& wo_local, int bounce, PrimitiveRef from_prim, Uniform& u, uint64_t& rays) const {
+        for (int j = 0; j < k_caustic_probes; ++j) {
+            const float uc = u.next();
+            const BsdfSample bs = bsdf.sample(wo_local, u.next2(), uc);
+            if (!bs.valid() || bs.is_delta() || is_black(bs.f)) continue;
+            const Vec3 wi = v.frame.to_world(bs.wi);
+            const float cos_g = dot(wi, v.ng);
+            if (leaks(cos_g, bs.wi.z)) continue;
+            Color b = beta * bs.f * (std::fabs(bs.wi.z) / (bs.pdf * float(k_caustic_probes)));
+            const bool diffuse = (bs.flags & k_bsdf_diffuse) != 0;
+            Ray ray{spawn.origin(cos_g > 0.f), wi, 0.f, k_inf, continuation_ray_type(bs, k_ray_camera)};
+            PrimitiveRef skip = from_prim;
+            bool after_delta = false;  // emission counts only after at least one delta bounce
+            for (int vertex = bounce + 1; vertex <= bounce + 1 + k_probe_chain; ++vertex) {
+                SurfaceHit hit;
+                ++rays;
+                const bool found = m_scene.intersect(ray, &hit, skip);
+                uint32_t li;
+                float tl;
+                if (after_delta && !m_lights.area_lights().empty() &&
+                    m_scene.intersect_area_light(ray.o, ray.d, ray.tmin, found ? hit.t : ray.tmax, &li, &tl))
+                    add_caustic(t, b * std::get<AreaLight>(m_lights[li]).radiance, diffuse);
+                if (!found) {
+                    if (!after_delta) break;
+                    if (const WorldLight* world = m_lights.world())
+                        add_caustic(t, b * world->Le(ray.d), diffuse);
+                    else
+                        add_caustic(t, b * m_lights.background(), diffuse);
+                    break;
+                }
+                // Delta-only surfaces cost a shading; anything that can scatter non-delta ends the chain (after
+                // its emission, if it follows a delta bounce).
+                const ShadingPoint sp = m_scene.shade(hit, -ray.d, nullptr);
+                if (after_delta && !is_black(sp.emission)) add_caustic(t, b * sp.emission, diffuse);
+                if (vertex > m_max_bounces) break;
+                const Bsdf& next = sp.bsdf();
+                const SurfaceVertex w = SurfaceVertex::at(hit, sp.ns, -ray.d);
+                const Vec3 wo = w.frame.to_local(-ray.d);
+                const float uc2 = u.next();
+                const BsdfSample d = next.sample(wo, u.next2(), uc2);
+                if (!d.valid() || !d.is_delta() || is_black(d.f)) break;
+                const Vec3 wd = w.frame.to_world(d.wi);
+                const float cd = dot(wd, w.ng);
+                if (leaks(cd, d.wi.z)) break;
+                b *= d.f * (std::fabs(d.wi.z) / d.pdf);
+                if (!is_finite(b) || is_black(b)) break;
+                SpawnPoints sp2(hit.p, w.ng);
+                ray = Ray{sp2.origin(cd > 0.f), wd, 0.f, k_inf, continuation_ray_type(d, ray.type)};
+                skip = hit.primitive;
+                after_delta = true;
+            }
+        }
+    }
+
+    static void add_caustic(PathTally& t, const Color& L, bool diffuse) {
+        if (!is_finite(L) || is_black(L)) return;
+        t.c[int(PathClass::Caustic)] += L;
+        if (diffuse) t.specular_after_diffuse += L;
+    }
+
+    static bool scene_has_delta(const Scene& scene) {
+        for (uint32_t m = 0; m < scene.materials().size(); ++m)
+            if (scene.material_flags(m) & k_bsdf_specular) return true;
+        return false;
+    }
+
     static bool scene_has_transmission(const Scene& scene) {
         for (uint32_t m = 0; m < scene.materials().size(); ++m)
             if (is_transmissive(scene, m)) return true;
         return false;
+    }
+
+    // Emission the path's own rays find: the caustic of the first non-delta scattering (one non-delta vertex, then
+    // delta bounces) is left to that vertex's probes (probe_caustics), which estimate the same expectation.
+    static void add_found(PathTally& t, const PathHistory& h, const Color& L) {
+        const PathClass c = emission_class(h);
+        if (c == PathClass::Caustic && h.non_delta == 1) return;
+        add(t, h, c, L);
     }
 
     static void add(PathTally& t, const PathHistory& h, PathClass c, const Color& L) {
@@ -198,7 +290,7 @@ private:
                 m_sampler.nee_pmf(last_ctx, light) * light_pdf_li(m_lights[light], last_ctx, d, dist, k_pdf_mode);
             w = mis_weight(k_heuristic, last_pdf, p_light);
         }
-        add(t, h, emission_class(h), beta * Le * w);
+        add_found(t, h, beta * Le * w);
     }
 
     void next_event(PathTally& t, const PathHistory& h, const SurfaceHit& hit, const SurfaceVertex& v,
@@ -232,6 +324,7 @@ private:
     const LightSampler& m_sampler;
     int m_max_bounces;
     bool m_transmissive;
+    bool m_has_delta;  // some material has a delta lobe: caustics possible, probes worth shooting
 };
 
 /// One pilot pixel's sums over its paths (luminance).
