@@ -27,8 +27,8 @@ constexpr MisHeuristic k_heuristic = MisHeuristic::Power;
 constexpr LightPdfMode k_pdf_mode = LightPdfMode::SolidAngle;
 constexpr int k_transmissive_probe_surfaces = 16;  // surfaces a blocked shadow ray's probe may cross
 constexpr int k_transparent_passes = 64;           // Transparent surfaces a pilot path may pass through
-constexpr int k_caustic_probes = 8;                // BSDF samples probing for caustics at a path's first non-delta vertex
-constexpr int k_probe_chain = 16;                  // delta bounces a probe follows at most
+constexpr int k_caustic_probes = 8;  // BSDF samples probing for caustics at a path's first non-delta vertex
+constexpr int k_probe_chain = 16;    // delta bounces a probe follows at most
 
 class Uniform {
 public:
