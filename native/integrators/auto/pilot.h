@@ -9,7 +9,9 @@
 //   caustic   L S+ D (S|D)* E     light reaching a non-delta vertex through at least one delta bounce.
 // The estimator is a path tracer with next-event estimation and MIS (power heuristic) between light sampling and
 // BSDF sampling, as PATH's defaults (integrators/path/path_tracer.h), with Russian roulette from the third bounce on:
-// Σ over classes is an unbiased estimate of PATH's image mean (tested against PATH). Also measured: the energy that
+// Σ over classes is an unbiased estimate of PATH's image mean (tested against PATH). A caustic from a small light is
+// rare for a path tracer, so at a path's first non-delta vertex k caustic probes (BSDF samples followed through delta
+// bounces only) estimate that vertex's caustic in place of the path's own ray (pilot.cpp). Also measured: the energy that
 // next-event estimation finds blocked only by transmissive (or transparent) surfaces — light that reaches the point
 // only through glass, which the path tracer must find by refraction — and the energy a Caustics switch would remove
 // (paths with a delta scatter after a diffuse one: Cycles' caustics filter), and how concentrated the variance is
