@@ -9,7 +9,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "integrators/auto/auto_policy.h"
 #include "integrators/auto/pilot.h"
+#include "integrators/auto/scene_features.h"
 #include "reference_scenes.h"
 #include "scene/scene.h"
 #include "test_helpers.h"
@@ -100,6 +102,14 @@ TEST(Pilot, GlassCausticIsCausticAndMatchesPathsCausticsSwitch) {
     EXPECT_GT(r.energy_share(PathClass::Caustic), 0.0);
     EXPECT_LE(r.mean[int(PathClass::Caustic)], r.specular_after_diffuse_mean);
     EXPECT_GT(r.through_transmissive_mean, 0.0);  // the sphere's shadow: light behind glass
+    // With these measurements AUTO's policy names the caustic variance as its reason.
+    SceneFeatures f = analyse_scene(prepared.scene());
+    f.pilot = r;
+    f.pilot_measured = true;
+    const AutoChoice choice = choose_integrator(f, [](const std::string&) { return true; });
+    EXPECT_EQ(choice.rule, "measured_caustics_bdpt") << choice.reason;
+    EXPECT_NE(choice.reason.find("of the variance is caustic"), std::string::npos) << choice.reason;
+    std::printf("Auto: %s \xe2\x80\x94 %s\n", choice.integrator.c_str(), choice.reason.c_str());
 
     Params all, off;
     all.set("samples", int64_t(512));
@@ -134,10 +144,13 @@ TEST(Pilot, DeterministicForASeed) {
 
 // The pilot's size: a coarser grid for larger films, always the film's region.
 TEST(Pilot, SettingsScaleWithTheFilm) {
-    EXPECT_EQ(pilot_settings_for(0, 0, 1920, 1080, 12, 0, 0).downscale, 4);
-    EXPECT_EQ(pilot_settings_for(0, 0, 100, 64, 12, 0, 0).downscale, 2);
-    EXPECT_EQ(pilot_settings_for(0, 0, 16, 12, 12, 0, 0).downscale, 1);
-    const PilotSettings s = pilot_settings_for(10, 20, 300, 200, 5, 9, 2);
+    EXPECT_EQ(pilot_settings_for(0, 0, 1920, 1080, 64, 12, 0, 0).downscale, 4);
+    EXPECT_EQ(pilot_settings_for(0, 0, 100, 64, 64, 12, 0, 0).downscale, 2);
+    EXPECT_EQ(pilot_settings_for(0, 0, 16, 12, 64, 12, 0, 0).downscale, 1);
+    EXPECT_EQ(pilot_settings_for(0, 0, 16, 12, 64, 12, 0, 0).samples, 8);
+    EXPECT_EQ(pilot_settings_for(0, 0, 16, 12, 1024, 12, 0, 0).samples, 8);
+    EXPECT_EQ(pilot_settings_for(0, 0, 16, 12, 4, 12, 0, 0).samples, 2);  // the fewest with a variance
+    const PilotSettings s = pilot_settings_for(10, 20, 300, 200, 64, 5, 9, 2);
     EXPECT_EQ(s.x0, 10);
     EXPECT_EQ(s.y0, 20);
     EXPECT_EQ(s.max_bounces, 5);

@@ -32,10 +32,11 @@ public:
         SceneFeatures features = analyse_scene(scene);
         // The pilot (pilot.h): PATH's bounce limit and seed, over the film's region.
         const PathSettings path = PathSettings::from_params(m_params);
-        features.pilot = run_pilot(scene,
-                                   pilot_settings_for(film.origin_x(), film.origin_y(), film.width(), film.height(),
-                                                      path.max_bounces, path.pixel.seed, ctx.threads),
-                                   &ctx.cancel);
+        features.pilot =
+            run_pilot(scene,
+                      pilot_settings_for(film.origin_x(), film.origin_y(), film.width(), film.height(),
+                                         path.pixel.samples, path.max_bounces, path.pixel.seed, ctx.threads),
+                      &ctx.cancel);
         features.pilot_measured = true;
         const AutoChoice choice = choose_integrator(features, &in_registry);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -346,11 +346,12 @@ const char* path_class_name(PathClass c) {
     }
 }
 
-PilotSettings pilot_settings_for(int x0, int y0, int width, int height, int max_bounces, uint64_t seed, int threads) {
+PilotSettings pilot_settings_for(int x0, int y0, int width, int height, int samples, int max_bounces, uint64_t seed,
+                                 int threads) {
     PilotSettings s;
     const int short_side = std::min(width, height);
     s.downscale = short_side >= 128 ? 4 : short_side >= 64 ? 2 : 1;
-    s.samples = 8;
+    s.samples = std::clamp(samples / 8, 2, 8);  // at least 2: a per-pixel variance
     s.max_bounces = max_bounces;
     s.seed = seed;
     s.threads = threads;
