@@ -12,6 +12,7 @@
 
 #include "core/rng.h"
 #include "integrators/common/mis.h"
+#include "integrators/common/roulette.h"
 #include "integrators/common/surface_vertex.h"
 #include "integrators/ray_types.h"
 #include "integrators/shadow_ray.h"
@@ -175,8 +176,9 @@ public:
                 last_pdf = bs.pdf;
                 last_ctx = ctx;
             }
-            if (bounce >= 2) {  // Russian roulette from the third bounce on (survival: β's largest component)
-                const float survive = std::min(1.f, max_component(beta));
+            if (bounce >= 2) {  // Russian roulette from the third bounce on: PATH's default THROUGHPUT rule
+                const float survive =
+                    continuation_survival(RouletteMode::Throughput, beta, 1, 1.f, [] { return Color(0.f); });
                 if (!(survive > 0.f) || u.next() >= survive) return;
                 beta /= survive;
             }
