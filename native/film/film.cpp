@@ -39,14 +39,37 @@ void Film::add_splats(const SplatBuffer& buffer, const PixelFilter& filter,
     std::lock_guard<std::mutex> lock(m_splat_lock);
     if (m_splats.empty()) m_splats.resize(m_pixels.size());
     for (uint32_t r = 0; r < k_noise_replicates; ++r) m_splat_samples[r] += samples[r];
-    for (const SplatBuffer::Entry& e : buffer.entries()) {
+    struct Footprint {
+        int x0, x1, y0, y1;
+        bool empty() const { return x0 > x1 || y0 > y1 || x1 - x0 >= k_max_span || y1 - y0 >= k_max_span; }
+    };
+    auto footprint = [&](const SplatBuffer::Entry& e) {
+        const float fx = e.x - float(m_origin_x), fy = e.y - float(m_origin_y);  // film coordinates
+        return Footprint{
+            std::max(0, int(std::ceil(fx - half - 0.5f))), std::min(m_width - 1, int(std::floor(fx + half - 0.5f))),
+            std::max(0, int(std::ceil(fy - half - 0.5f))), std::min(m_height - 1, int(std::floor(fy + half - 0.5f)))};
+    };
+    // The accumulators a splat lands on are far apart in memory (light paths splat anywhere): fetch those of the
+    // splat k_ahead entries on while this one is added, which hides most of the cache misses.
+    constexpr size_t k_ahead = 8;
+    const std::vector<SplatBuffer::Entry>& entries = buffer.entries();
+    for (size_t k = 0; k < entries.size(); ++k) {
+        if (k + k_ahead < entries.size()) {
+            const Footprint f = footprint(entries[k + k_ahead]);
+            if (!f.empty())
+                for (int y = f.y0; y <= f.y1; ++y) {
+                    const char* row = reinterpret_cast<const char*>(&m_splats[size_t(y) * m_width + f.x0]);
+                    const size_t bytes = size_t(f.x1 - f.x0 + 1) * sizeof(SplatAccum);
+                    for (size_t b = 0; b < bytes; b += 64) __builtin_prefetch(row + b, 1);
+                    __builtin_prefetch(row + bytes - 1, 1);
+                }
+        }
+        const SplatBuffer::Entry& e = entries[k];
         if (!(e.replicate < k_noise_replicates) || !is_finite(e.value)) continue;
         const float fx = e.x - float(m_origin_x), fy = e.y - float(m_origin_y);  // film coordinates
-        const int x0 = std::max(0, int(std::ceil(fx - half - 0.5f))),
-                  x1 = std::min(m_width - 1, int(std::floor(fx + half - 0.5f)));
-        const int y0 = std::max(0, int(std::ceil(fy - half - 0.5f))),
-                  y1 = std::min(m_height - 1, int(std::floor(fy + half - 0.5f)));
-        if (x0 > x1 || y0 > y1 || x1 - x0 >= k_max_span || y1 - y0 >= k_max_span) continue;
+        const Footprint f = footprint(e);
+        const int x0 = f.x0, x1 = f.x1, y0 = f.y0, y1 = f.y1;
+        if (f.empty()) continue;
         float wx[k_max_span], wy[k_max_span];
         for (int x = x0; x <= x1; ++x) wx[x - x0] = filter.pdf(fx - (float(x) + 0.5f));
         for (int y = y0; y <= y1; ++y) wy[y - y0] = filter.pdf(fy - (float(y) + 0.5f));

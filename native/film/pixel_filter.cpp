@@ -37,6 +37,22 @@ PixelFilter::PixelFilter(const std::string& name, float width)
         m_inverse_cdf[i] = (table.sample_continuous(u) - 0.5f) * m_support;
     }
     m_inverse_cdf[k_inverse_size] = 0.5f * m_support;
+    // sample_1d maps u ∈ [i, i+1]/N linearly onto [inv[i], inv[i+1]]: density (1/N)/(inv[i+1] − inv[i]) there.
+    m_segment_pdf.resize(k_inverse_size);
+    for (int i = 0; i < k_inverse_size; ++i) {
+        const float w = m_inverse_cdf[i + 1] - m_inverse_cdf[i];
+        m_segment_pdf[i] = w > 0.f ? (1.f / k_inverse_size) / w : 0.f;
+    }
+    m_cells_per_unit = float(k_pdf_cells) / m_support;
+    m_cell_segment.resize(k_pdf_cells);
+    for (int c = 0; c < k_pdf_cells; ++c) m_cell_segment[c] = uint16_t(segment_by_search(cell_left(c)));
+}
+
+float PixelFilter::cell_left(int c) const { return float(c) / m_cells_per_unit - 0.5f * m_support; }
+
+size_t PixelFilter::segment_by_search(float x) const {
+    const auto it = std::upper_bound(m_inverse_cdf.begin(), m_inverse_cdf.end(), x);
+    return std::min(size_t(std::max<std::ptrdiff_t>(it - m_inverse_cdf.begin() - 1, 0)), size_t(k_inverse_size - 1));
 }
 
 float PixelFilter::sample_1d(float u) const {
@@ -63,12 +79,13 @@ float PixelFilter::pdf(float x) const {
     const float half = 0.5f * m_support;
     if (!(std::fabs(x) <= half)) return 0.f;
     if (m_kind == Kind::Box) return 1.f / m_support;
-    // sample_1d maps u ∈ [i, i+1]/N linearly onto [inv[i], inv[i+1]]: density (1/N)/(inv[i+1] − inv[i]) there.
-    const auto it = std::upper_bound(m_inverse_cdf.begin(), m_inverse_cdf.end(), x);
-    const size_t i =
-        std::min(size_t(std::max<std::ptrdiff_t>(it - m_inverse_cdf.begin() - 1, 0)), size_t(k_inverse_size - 1));
-    const float width = m_inverse_cdf[i + 1] - m_inverse_cdf[i];
-    return width > 0.f ? (1.f / k_inverse_size) / width : 0.f;
+    // The segment i with inv[i] ≤ x < inv[i + 1] (the last one with inv[i] ≤ x, clamped to [0, N − 1], as
+    // segment_by_search finds it): from the segment of the left end of the cell before x's (one cell of margin
+    // for rounding: that left end is ≤ x, so its segment is ≤ x's), forward while the next knot is ≤ x.
+    const int c = std::clamp(int((x + half) * m_cells_per_unit) - 1, 0, k_pdf_cells - 1);
+    size_t i = m_cell_segment[size_t(c)];
+    while (i + 1 <= size_t(k_inverse_size) && m_inverse_cdf[i + 1] <= x) ++i;
+    return m_segment_pdf[std::min(i, size_t(k_inverse_size - 1))];
 }
 
 Vec2 PixelFilter::sample(Vec2 u) const {

@@ -6,6 +6,7 @@
 // Blackman–Harris window's 2× the width (a Blackman–Harris of width 1.5 reaches 1.5 pixels each way).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,17 @@ private:
     /// sample is one table lookup with linear interpolation instead of a binary search.
     static constexpr int k_inverse_size = 4096;
     std::vector<float> m_inverse_cdf;
+    /// pdf() without a binary search (it runs for every pixel a splat covers, for every light-tracing splat): the
+    /// density of each segment of the inverse CDF, and for each of k_pdf_cells equal cells of the support the
+    /// segment that holds the cell's left end, from which a short forward scan finds the segment of any x in the
+    /// cell — the same segment, and so the same value, as the binary search.
+    static constexpr int k_pdf_cells = 2 * k_inverse_size;
+    std::vector<float> m_segment_pdf;
+    std::vector<uint16_t> m_cell_segment;
+    float m_cells_per_unit = 0.f;
     float sample_1d(float u) const;
+    float cell_left(int c) const;
+    size_t segment_by_search(float x) const;
 };
 
 }  // namespace candela

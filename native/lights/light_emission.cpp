@@ -251,8 +251,21 @@ Color light_radiance(const Light& light, const EmitterPoint& pt, const Vec3& d) 
 }
 
 float light_center_direction_pdf(const Light& light, const Vec3& d) {
-    if (const auto* point = std::get_if<PointLight>(&light)) return point_direction_pdf(point->spot, d);
+    if (const auto* point = std::get_if<PointLight>(&light)) {
+        if (point->radius <= 0.f || point->spot.cos_half < -1.f) return point_direction_pdf(point->spot, d);
+        return uniform_cone_pdf(clamp(point->spot.cos_half, -1.f, 1.f));
+    }
     return std::holds_alternative<SunLight>(light) ? 1.f : 0.f;
+}
+
+bool emission_arrives(const Light& light, const Vec3& x, const Vec3& d) {
+    const auto* point = std::get_if<PointLight>(&light);
+    if (!point || !(point->radius > 0.f)) return true;
+    // v = c − x, |v| cos θ = −d·v, |v|² sin² θ = |v × d|²: |v| tan θ ≤ r ⇔ |v × d|²·|v|² ≤ r²·(d·v)², cos θ > 0.
+    const Vec3 v = point->position - x;
+    const float along = -dot(d, v);
+    if (!(along > 0.f)) return false;
+    return length_squared(cross(v, d)) * length_squared(v) <= point->radius * point->radius * along * along;
 }
 
 bool light_hittable(const Light& light) {

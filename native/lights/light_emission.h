@@ -13,7 +13,10 @@
 //                            disk next-event estimation samples, but a fixed surface): direction d first (sphere /
 //                            cone), then a point uniform on the disk of radius r across d, lifted onto the
 //                            hemisphere facing d; its joint density, split as p_pos = 1/(4πr²),
-//                            p_dir = 4·cos θ·p(d). Not hit by rays (as in the path tracer).
+//                            p_dir = 4·cos θ·p(d). Not hit by rays (as in the path tracer). The path tracer
+//                            (and Cycles 3.4) light a receiver x by a disk through the centre facing x, which
+//                            gives x less light than the sphere (irradiance ratio 1 + r²/d² straight under it):
+//                            emission_arrives() keeps the emitted rays that x would receive from its disk.
 //   area light               uniform point (rectangle, ellipse), cosine-weighted direction on its emitting side.
 //   emissive triangle        uniform point, a side with probability ½, cosine-weighted direction on it; textured
 //                            emission evaluated at the point toward the direction.
@@ -88,10 +91,23 @@ Color light_radiance(const Light& l, const EmitterPoint& pt, const Vec3& d);
 /// — are reached only by connecting to them.
 bool light_hittable(const Light& l);
 
+/// Whether light that l emitted along unit d and that first reaches a surface at x is light the path tracer's model
+/// of l gives x (true for every light but a soft point or spot light). Cycles 3.4 and PATH (lights/point_light.h)
+/// light x by a disk of radius r through the centre c, facing x, of radiance I/(πr²); emission samples the lines
+/// that cross the sphere of radius r with that radiance (a disk that turns toward each receiver has no radiance
+/// field of its own to sample). The disk's lines through x are a subset of the sphere's: those that cross the disk's
+/// plane within r of c, |x − c|·tan θ ≤ r with θ the angle between −d and the direction from x to c. Dropping the
+/// other emitted rays at their first surface leaves that surface exactly the disk's irradiance. (Geometry inside
+/// the sphere, between the disk and the sphere's surface, is ignored: the rays leave the sphere's surface.)
+bool emission_arrives(const Light& l, const Vec3& x, const Vec3& d);
+
 /// For lights no ray can hit, the density of an emitted ray's direction d as if it left the light's centre: point
-/// and spot lights the direction density of light_sample_le (whatever their radius), the sun 1 (its direction
-/// taken as a delta); 0 for the others. Strategies that reach such a light at different points of it (next-event
-/// estimation's disk, emission's sphere) weigh their paths by this one function of the light and the direction.
+/// and spot lights the direction density of light_sample_le (whatever their radius; a soft spot's cone density
+/// without the cone test, since its disk's points send light up to the disk's angular size beyond the cone and a
+/// strategy that reaches such a direction needs a positive density), the sun 1 (its direction taken as a delta); 0
+/// for the others. Strategies that reach such a light at different points of it (next-event estimation's disk,
+/// emission's sphere) weigh their paths by this one function of the light and the direction from its centre, as if
+/// the light were a point there: every strategy then computes the same weights for a path, which sum to 1.
 float light_center_direction_pdf(const Light& l, const Vec3& d);
 
 /// The light's flux Φ (luminance) as light_sample_le emits it: the spot's true cone integral, the world through

@@ -62,16 +62,20 @@ float Densities::emission(const PathVertex& light, const PathVertex& next) const
     const int32_t e = emitter_of(light);
     if (e < 0) return 0.f;
     const Vec3 d = direction(light, next);
+    const Light& l = m_c.emitters[size_t(e)];
+    // Point and spot lights (any radius): from their centre, as a point (see light_center_direction_pdf).
+    if (std::holds_alternative<PointLight>(l))
+        return solid_angle_to_area(light, next, light_center_direction_pdf(l, d));
     const EmitterPoint pt = emitter_point(light, d);
     float pos = 0.f, dir = 0.f;
-    light_pdf_le(m_c.emitters[size_t(e)], light.infinite ? next.p : light.p, pt.n, d, m_c.emitters.bounds(), &pos,
-                 &dir);
+    light_pdf_le(l, light.infinite ? next.p : light.p, pt.n, d, m_c.emitters.bounds(), &pos, &dir);
     if (light.infinite) return pos * (next.on_surface() ? std::fabs(dot(next.ng, d)) : 1.f);  // parallel rays
     return solid_angle_to_area(light, next, dir);
 }
 float Densities::origin(const PathVertex& v, const PathVertex& toward) const {
     const int32_t e = emitter_of(v);
     if (e < 0) return 0.f;
+    if (std::holds_alternative<PointLight>(m_c.emitters[size_t(e)])) return m_c.emitters.pmf(uint32_t(e));
     const Vec3 d = direction(v, toward);
     const EmitterPoint pt = emitter_point(v, d);
     float pos = 0.f, dir = 0.f;
@@ -154,6 +158,32 @@ Color emitted(const BdptContext& c, const PathVertex& v) {
     return v.bsdf ? v.bsdf->shading(v.w).emission : Color(0.f);
 }
 
+/// Strategy (1, t) toward a soft point or spot light: the point next-event estimation samples — on the disk through
+/// the light's centre facing camera vertex t − 1 (lights/point_light.h: the path tracer's and Cycles 3.4's model of
+/// the light) — weighted as a path through the centre (Densities, light_center_direction_pdf).
+StrategyResult connect_soft_point(const BdptContext& c, const std::vector<PathVertex>& y,
+                                  const std::vector<PathVertex>& z, int t, const PathVertex& pt,
+                                  const PointLight& light, uint32_t e, float pmf, Vec2 u_point, PathStats& stats) {
+    StrategyResult r;
+    const LightSample ls = light.sample_li(LightSampleContext{pt.p}, u_point);
+    if (!(ls.pdf > 0.f) || is_black(ls.Li)) return r;
+    const Color f = pt.bsdf->f(pt.w, ls.wi);
+    if (is_black(f)) return r;
+    PathVertex on_disk;  // for the shadow ray
+    on_disk.kind = VertexKind::Light;
+    on_disk.p = pt.p + ls.wi * ls.dist;
+    PathVertex centre;  // for the weight
+    centre.kind = VertexKind::Light;
+    centre.p = light.position;
+    centre.emitter = int32_t(e);
+    centre.delta_light = true;
+    centre.pdf_fwd = pmf;
+    r.L = pt.beta * f * ls.Li * (pt.bsdf->camera_cosine(pt.w, ls.wi) / (pmf * ls.pdf));
+    if (is_black(r.L) || !visible(c.scene, pt, on_disk, k_ray_shadow, stats)) return StrategyResult();
+    r.weight = strategy_weight(c, y, 1, z, t, &centre, nullptr);
+    return r;
+}
+
 }  // namespace
 
 StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVertex>& y, int s,
@@ -221,6 +251,8 @@ StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVer
         const uint32_t e = c.emitters.select(u.u_select, &pmf);
         if (!(pmf > 0.f)) return r;
         const Light& light = c.emitters[e];
+        if (const auto* point = std::get_if<PointLight>(&light); point && point->radius > 0.f)
+            return connect_soft_point(c, y, z, t, pt, *point, e, pmf, u.u_point, stats);
         const EmitterPoint ep = light_sample_point(light, u.u_point, u.u_point, 0.5f);
         if (!ep.valid()) return r;
         PathVertex lv;

@@ -140,11 +140,15 @@ int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std
     const EmissionSample es = c.emitters.sample_le(u0.light_select, u0.light, u0.bsdf, u0.lobe, &index, &pmf);
     if (!es.valid() || !(pmf > 0.f)) return 0;
     const Light& light = c.emitters[index];
+    // A point or spot light's vertex is its centre, whatever its radius: the strategies reach a soft one at
+    // different points of it (emission's sphere, next-event estimation's disk), and MIS weighs them all as if it
+    // were a point there (Densities, light_center_direction_pdf). The ray leaves the sampled point.
+    const PointLight* point = std::get_if<PointLight>(&light);
     PathVertex& y0 = y[0];
     y0.clear();
     y0.kind = VertexKind::Light;
-    y0.p = es.p;
-    y0.ng = (es.delta_pos || es.infinite) ? Vec3(0.f) : es.n;
+    y0.p = point ? point->position : es.p;
+    y0.ng = (point || es.delta_pos || es.infinite) ? Vec3(0.f) : es.n;
     y0.emitter = int32_t(index);
     y0.infinite = es.infinite;
     y0.delta_light = !light_hittable(light);
@@ -153,8 +157,9 @@ int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std
     y0.hit.b1 = es.b1;  // a textured triangle's emission toward a connection
     y0.hit.b2 = es.b2;
     // A distant light's origin is its direction (solid-angle density); a finite one's its point.
-    y0.pdf_fwd = pmf * (es.infinite ? es.pdf_dir : es.pdf_pos);
-    y0.beta = Color(1.f / (pmf * (es.infinite ? es.pdf_dir : es.pdf_pos)));
+    const float origin_pdf = es.infinite ? es.pdf_dir : point ? 1.f : es.pdf_pos;
+    y0.pdf_fwd = pmf * origin_pdf;
+    y0.beta = Color(1.f / (pmf * origin_pdf));
     Color beta = es.weight() / pmf;
     if (!is_finite(beta) || limit <= 1) return 1;
     Ray ray{(es.delta_pos || es.infinite) ? es.p : offset_ray_origin(es.p, es.n), es.d, 0.f, k_inf, k_ray_all};
@@ -166,6 +171,8 @@ int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std
         SurfaceHit hit;
         ++stats.rays;
         if (!scene.intersect(ray, &hit, from)) return n;
+        // A soft point light lights its first receiver through the disk that faces it (lights/light_emission.h).
+        if (n == 1 && !emission_arrives(light, hit.p, ray.d)) return n;
         PathVertex& v = y[n];
         make_surface(v, scene, hit, ray, beta);
         // From the positions, as the connections recompute them (see camera_walk).

@@ -48,6 +48,8 @@ void walk_light_path(const Scene& scene, const EmitterSet& emitters, const Light
         SurfaceHit hit;
         ++stats.rays;
         if (!scene.intersect(ray, &hit, from)) return;
+        // A soft point light lights its first receiver through the disk that faces it (lights/light_emission.h).
+        if (depth == 1 && !emission_arrives(emitters[emitted.emitter], hit.p, ray.d)) return;
         const Vec3 w_l = -ray.d;
         const VertexBsdf vb(scene, hit, w_l, scene.shade(hit, w_l));
         if (depth == 1) beta_ref = max_component(beta);

@@ -83,6 +83,8 @@ void PhotonTracer::trace(SobolSampler& sampler, PhotonPaths paths, Arrive&& arri
         SurfaceHit hit;
         ++stats.rays;
         if (!m_scene.intersect(ray, &hit, from)) return;
+        // A soft point light lights its first receiver through the disk that faces it (lights/light_emission.h).
+        if (depth == 0 && !emission_arrives(m_emitters[start.emitter], hit.p, ray.d)) return;
         const Vec3 w_l = -ray.d;
         const ShadingPoint sp = m_scene.shade(hit, w_l);
         const Bsdf& bsdf = sp.bsdf();
