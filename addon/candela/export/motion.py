@@ -24,7 +24,8 @@ MAX_STEPS = 129   # the native schema's limit (2^7 + 1: Cycles' largest Motion S
 
 def object_steps(ob):
     """Cycles' motion samples of object `ob` (2^s + 1 for Motion Steps s; 0 with its Motion Blur unticked)."""
-    cycles = getattr(ob, "cycles", None)
+    # The original's settings: an evaluated copy is not refreshed when only a property group changes.
+    cycles = getattr(getattr(ob, "original", ob), "cycles", None)
     if cycles is None or not getattr(cycles, "use_motion_blur", True):
         return 0
     return min((2 << (max(1, int(getattr(cycles, "motion_steps", 1))) - 1)) + 1, MAX_STEPS)
