@@ -316,10 +316,10 @@ def _linear_keys(ob, path, frames_values):
             kp.interpolation = "LINEAR"
 
 
-def _motion_room(scene):
+def _motion_room(scene, back=(0.5, 0.55, 0.6)):
     """A floor and back wall under an area light, lit also by a dim world: the motion scenes' stage."""
     ex.rectangle(scene, "Floor", ex.diffuse("Floor", (0.6, 0.6, 0.6)), Matrix.Diagonal((6, 6, 1, 1)))
-    ex.rectangle(scene, "Back", ex.diffuse("Back", (0.5, 0.55, 0.6)),
+    ex.rectangle(scene, "Back", ex.diffuse("Back", back),
                  Matrix.Translation((0, 2.0, 2.0)) @ Matrix.Rotation(math.radians(90.0), 4, "X")
                  @ Matrix.Diagonal((6, 2, 1, 1)))
     light(scene, "Key", "AREA", (1.0, -2.0, 3.5), 400.0, rotation_deg=(35.0, 0.0, 15.0), shape="RECTANGLE",
@@ -328,13 +328,13 @@ def _motion_room(scene):
 
 
 def build_moving_cube(scene, **_):
-    """Motion blur of an object (Shutter 0.5, Position Center, Motion Steps 1: three samples): a cube sliding 2 m
-    and turning 90° per frame (linear keys at frames 0 and 2), so over the shutter around frame 1 it sweeps 1 m and
-    45°, its shadow blurring with it."""
-    _motion_room(scene)
-    cube = ex.cube(scene, "Cube", ex.diffuse("Cube", (0.8, 0.3, 0.2)),
-                   Matrix.Translation((0.0, 0.0, 0.5)) @ Matrix.Diagonal((0.4, 0.4, 0.4, 1)))
-    _linear_keys(cube, "location", [(0, (-2.0, 0.0, 0.5)), (2, (2.0, 0.0, 0.5))])
+    """Motion blur of an object (Shutter 0.5, Position Center, Motion Steps 1: three samples): a light 1 m cube in
+    front of a dark wall, sliding 4 m and turning 90° per frame (linear keys at frames 0 and 2), so over the shutter
+    around frame 1 it sweeps 2 m and 45°, its shadow blurring with it."""
+    _motion_room(scene, back=(0.05, 0.05, 0.06))
+    cube = ex.cube(scene, "Cube", ex.diffuse("Cube", (0.9, 0.8, 0.7)),
+                   Matrix.Translation((0.0, 0.0, 0.5)) @ Matrix.Diagonal((0.5, 0.5, 0.5, 1)))
+    _linear_keys(cube, "location", [(0, (-4.0, 0.0, 0.5)), (2, (4.0, 0.0, 0.5))])
     _linear_keys(cube, "rotation_euler", [(0, (0.0, 0.0, 0.0)), (2, (0.0, 0.0, math.radians(180.0)))])
     ex.camera(scene, (0.0, -6.0, 1.6), (80.0, 0.0, 0.0), lens=42.0)
     scene.frame_set(1)
