@@ -278,6 +278,23 @@ TEST(MotionBlur, BadMotionArraysAreNamed) {
     EXPECT_THROW(c.validate(), InvalidScene);
 }
 
+TEST(MotionBlur, MovingEmittersStayStillAndSaySo) {
+    // The box emits: its triangles are lights at fixed places, so it is not moved (in any integrator) and the
+    // session's note says so, even for PATH.
+    MeshBuilder b;
+    const uint32_t glow = b.add_material(Color(0.f), Color(1.f));
+    b.add_instance(b.add_box(Vec3(0.5f), glow), rows_of(translation(Vec3(-1.f, 0.f, -5.f))).data());
+    SceneArrays a = b.arrays();
+    std::vector<float> motion = rows_of(translation(Vec3(-1.f, 0.f, -5.f)));
+    const std::vector<float> end = rows_of(translation(Vec3(1.f, 0.f, -5.f)));
+    motion.insert(motion.end(), end.begin(), end.end());
+    a.set("instance_motion", ElemType::F32, {1, 2, 4, 4}, motion.data());
+    const PreparedScene scene(a, basic_params(4, 4, 1, 0));
+    EXPECT_TRUE(scene.scene().has_still_moving_emitters());
+    EXPECT_FALSE(scene.scene().has_motion());
+    EXPECT_NE(unhonoured_features_note("PATH", ~0u, scene.scene()).find("moving emitting objects"), std::string::npos);
+}
+
 TEST(MotionBlur, IntegratorsThatDoNotRenderItSaySo) {
     const PreparedScene scene(moving_box(-1.f, 1.f, true), basic_params(4, 4, 1, 0));
     EXPECT_NE(unhonoured_features_note("SPPM", 0u, scene.scene()).find("motion blur"), std::string::npos);
