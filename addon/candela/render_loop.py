@@ -9,6 +9,7 @@ import time
 from . import native
 from .export import ExportError, Warnings, export_scene, name_objects, render_camera
 from .export.camera import camera_to_world
+from .export.motion import motion_arrays
 from .params import result_size, to_native_params
 from .unsupported import ignored_settings
 
@@ -283,8 +284,14 @@ def render_frame(engine, depsgraph, background=False):
     width, height = result_size(scene.render)
     warnings = Warnings()
     names = {}
+    motion = {} if scene.render.use_motion_blur and not preview else None
     arrays = export_scene(depsgraph, camera, test_break=engine.test_break,
-                          status=lambda text: engine.update_stats("", text), warnings=warnings, names=names)
+                          status=lambda text: engine.update_stats("", text), warnings=warnings, names=names,
+                          motion=motion)
+    if arrays is not None and motion is not None and hasattr(engine, "frame_set"):
+        engine.update_stats("", "Exporting motion")
+        arrays.update(motion_arrays(engine, depsgraph, camera.original if camera is not None else None,
+                                    motion["keys"], motion["steps"], arrays["instance_transform"]))
     if not preview:   # a preview's tiny scene is Blender's: its settings are not the user's to fix
         for message in ignored_settings(depsgraph, camera):
             warnings.add(message)

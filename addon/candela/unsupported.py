@@ -1,7 +1,7 @@
 """Blender settings a scene uses that Candela does not render: one warning per render each, naming the setting or
 the object, material or view layer, so nothing is dropped without a word.
 
-Checked: motion blur, a view layer's Material Override, render passes Candela does not write (every use_pass_*
+Checked: motion blur's rolling shutter, a view layer's Material Override, render passes Candela does not write (every use_pass_*
 beyond Combined, Depth, Normal and Object Index, plus Cycles' own), shader AOVs and light groups, volumes (Volume
 objects, a material's or the world's Volume output), true displacement (a material's Displacement output with
 the Displacement Only or Displacement and Bump method: Candela renders the output as bump mapping, Cycles' Bump Only,
@@ -116,7 +116,9 @@ def ignored_settings(depsgraph, camera=None):
     scene = depsgraph.scene
     out = []
     if scene.render.use_motion_blur:
-        out.append("Candela: Motion Blur (Render Properties) is not rendered: objects are shown at the frame's time")
+        # Camera and object motion are rendered (export/motion.py); these parts of Cycles' motion blur are not.
+        if getattr(getattr(scene, "cycles", None), "rolling_shutter_type", "NONE") != "NONE":
+            out.append("Candela: Motion Blur > Rolling Shutter is not rendered: every row sees the whole shutter")
     layer = scene.original.view_layers.get(depsgraph.view_layer.name) if depsgraph.view_layer else None
     if layer is not None:
         if layer.material_override is not None:

@@ -24,6 +24,7 @@ const std::vector<ArraySpec>& array_schema() {
         {"instance_color", ElemType::F32, {-1, 4}, false},
         {"instance_random", ElemType::F32, {-1}, false},
         {"instance_terminator", ElemType::F32, {-1}, false},
+        {"instance_motion", ElemType::F32, {-1, -1, 4, 4}, false},
         {"material_type", ElemType::U32, {-1}, true},
         {"materials", ElemType::F32, {-1, -1}, true},
         {"material_holdout", ElemType::F32, {-1}, false},
@@ -33,6 +34,7 @@ const std::vector<ArraySpec>& array_schema() {
         {"light_type", ElemType::U32, {-1}, false},
         {"lights", ElemType::F32, {-1, -1}, false},
         {"camera_to_world", ElemType::F32, {4, 4}, true},
+        {"camera_motion", ElemType::F32, {-1, 4, 4}, false},
         {"world_color", ElemType::F32, {3}, false},
         {"uvs", ElemType::F32, {-1, 3, 2}, false},
         {"tangents", ElemType::F32, {-1, 3, 4}, false},
@@ -215,6 +217,24 @@ void SceneArrays::validate() const {
                                    "] = " + std::to_string(f->data<uint8_t>()[i]) +
                                    " has unknown bits (capabilities()['instance_flags'] lists them)");
     if (has("instance_color")) check_finite(get("instance_color"), "instance_color", 4);
+    // Motion blur: every instance's and the camera's transform at 2 to k_max_motion_steps evenly spaced times
+    // of the shutter interval.
+    constexpr size_t k_max_motion_steps = 129;
+    if (const Array* m = find("instance_motion")) {
+        if (rows("instance_motion") != I)
+            throw InvalidScene("scene array 'instance_motion' has " + std::to_string(rows("instance_motion")) +
+                               " rows, expected " + std::to_string(I) + " (one per instance)");
+        if (m->shape[1] < 2 || m->shape[1] > k_max_motion_steps)
+            throw InvalidScene("scene array 'instance_motion' has " + std::to_string(m->shape[1]) +
+                               " motion steps per instance, expected 2 to " + std::to_string(k_max_motion_steps));
+        check_finite(*m, "instance_motion", 16 * size_t(m->shape[1]));
+    }
+    if (const Array* m = find("camera_motion")) {
+        if (m->shape[0] < 2 || m->shape[0] > k_max_motion_steps)
+            throw InvalidScene("scene array 'camera_motion' has " + std::to_string(m->shape[0]) +
+                               " motion steps, expected 2 to " + std::to_string(k_max_motion_steps));
+        check_finite(*m, "camera_motion", 16);
+    }
     if (has("instance_random")) check_finite(get("instance_random"), "instance_random", 1);
     if (const Array* t = find("instance_terminator"))
         for (size_t i = 0; i < I; ++i) {

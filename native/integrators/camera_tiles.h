@@ -19,6 +19,7 @@
 #include "integrators/render_context.h"
 #include "sampling/sampler.h"
 #include "scene/scene.h"
+#include "scene/shutter_time.h"
 
 namespace candela {
 
@@ -66,14 +67,18 @@ struct splats_from_camera<
 template <typename Tracer>
 class CameraTilePass {
 public:
-    CameraTilePass(const Scene& scene, Film& film, RenderContext& ctx, const PixelSampling& ps, const Tracer& tracer)
+    /// `motion_blur`: the tracer renders motion blur (one shutter time per camera path: render_moving); otherwise
+    /// a moving scene is rendered at the shutter's middle.
+    CameraTilePass(const Scene& scene, Film& film, RenderContext& ctx, const PixelSampling& ps, const Tracer& tracer,
+                   bool motion_blur = false)
         : m_scene(scene),
           m_camera(scene.camera()),
           m_film(film),
           m_ctx(ctx),
           m_ps(ps),
           m_tracer(tracer),
-          m_aovs(ctx.aovs && !ctx.aovs->empty() ? ctx.aovs : nullptr) {}
+          m_aovs(ctx.aovs && !ctx.aovs->empty() ? ctx.aovs : nullptr),
+          m_motion(motion_blur && scene.has_motion()) {}
 
     /// Renders samples [begin, end) of every pixel of tile `tile_index` and adds them to the film; a splatting tracer's
     /// splats go to `splats` (the caller merges them in tile order). Returns false if cancelled (nothing added).
@@ -128,6 +133,7 @@ private:
                                                      PathStats& stats, PixelAccum& acc, AovAccum* aov_acc,
                                                      SplatBuffer* splats) const {
         const uint32_t replicate = noise_replicate_of(uint32_t(s0));
+        if (m_motion) return render_moving(fx, fy, s0, end, sampler, stats, acc, aov_acc, splats);
         Ray rays[k_group_size];
         int samples[k_group_size];
         int n = 0;
@@ -157,6 +163,42 @@ private:
                 L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out, SplatSink{splats, replicate, fx, fy});
             else
                 L = m_tracer.Li(rays[j], sampler, stats, &alpha, aov_out);
+            ++stats.paths;
+            acc.add(checked_radiance(L, fx, fy, s, stats), alpha, replicate);
+            if (aov_acc) aov_acc->add(aov, s == 0);
+        }
+    }
+
+    /// render_group for a scene with motion blur: each camera sample draws its shutter time (shutter_time_of the
+    /// sampler's stream key: no sampler dimension is taken) and its whole path — the camera ray, every bounce and
+    /// shadow ray, shading and splats — sees the scene at that time (a ShutterScope). The camera rays are traced
+    /// one by one (each has its own time).
+    void render_moving(int fx, int fy, int s0, int end, Sampler& sampler, PathStats& stats, PixelAccum& acc,
+                       AovAccum* aov_acc, SplatBuffer* splats) const {
+        const uint32_t replicate = noise_replicate_of(uint32_t(s0));
+        int n = 0;
+        for (int s = s0; s < end && n < k_group_size; s += int(k_noise_replicates), ++n) {
+            const float time = std::visit(
+                [&](auto& concrete) {
+                    concrete.start_pixel_sample(uint32_t(fx), uint32_t(fy), index_in_replicate(uint32_t(s)));
+                    return shutter_time_of(concrete.sample_stream_key());
+                },
+                sampler);
+            const ShutterScope scope(time);
+            const Ray ray = camera_ray(fx, fy, s, sampler);
+            float alpha = 1.f;
+            AovSample aov;
+            AovSample* const aov_out = m_aovs ? &aov : nullptr;
+            Color L;
+            if constexpr (k_group_size > 1) {
+                TracedHit hit;
+                hit.found = m_scene.intersect(ray, &hit.hit);
+                L = m_tracer.Li(ray, hit, sampler, stats, &alpha, aov_out);
+            } else if constexpr (splats_from_camera<Tracer>::value) {
+                L = m_tracer.Li(ray, sampler, stats, &alpha, aov_out, SplatSink{splats, replicate, fx, fy});
+            } else {
+                L = m_tracer.Li(ray, sampler, stats, &alpha, aov_out);
+            }
             ++stats.paths;
             acc.add(checked_radiance(L, fx, fy, s, stats), alpha, replicate);
             if (aov_acc) aov_acc->add(aov, s == 0);
@@ -197,13 +239,15 @@ private:
     const PixelSampling& m_ps;
     const Tracer& m_tracer;
     AovFilm* const m_aovs;
+    const bool m_motion;  // one shutter time per camera path (render_moving)
 };
 
-/// Renders ps.samples camera samples per pixel with `tracer`, progressively through the driver.
+/// Renders ps.samples camera samples per pixel with `tracer`, progressively through the driver (`motion_blur`: see
+/// CameraTilePass).
 template <typename Tracer>
 StopReason render_camera_progressive(const Scene& scene, Film& film, RenderContext& ctx, const PixelSampling& ps,
-                                     const Tracer& tracer) {
-    const CameraTilePass<Tracer> tiles(scene, film, ctx, ps, tracer);
+                                     const Tracer& tracer, bool motion_blur = false) {
+    const CameraTilePass<Tracer> tiles(scene, film, ctx, ps, tracer, motion_blur);
     ProgressivePlan plan;
     plan.total = ps.samples;
     plan.max_pass = camera_max_pass(film, ps);

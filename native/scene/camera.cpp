@@ -111,10 +111,17 @@ Camera::Camera(const Params& params, const Affine& camera_to_world)
 void Camera::translate(const Vec3& offset) {
     for (int r = 0; r < 3; ++r) m_to_world.m[r][3] += offset[r];
     m_to_camera = m_to_world.inverse();
+    m_motion.translate(offset);
+}
+
+void Camera::set_motion(const std::vector<Affine>& steps) {
+    m_motion = MotionTransform(steps);
+    m_moving = m_motion.moves();
+    if (m_moving) m_rigid = false;  // interpolated rotations are unit only up to rounding: normalise every ray
 }
 
 Vec2 Camera::world_to_raster(const Vec3& p) const {
-    const Vec3 q = m_to_camera.point(p);  // camera space: looking down −Z
+    const Vec3 q = to_camera().point(p);  // camera space: looking down −Z
     float sx = q.x, sy = q.y;
     if (!m_ortho) {
         const float depth = std::fmax(-q.z, 1e-30f);
@@ -136,8 +143,8 @@ Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {
         const float len = length(d_cam);
         Ray ray;
         ray.type = k_ray_camera;
-        ray.o = m_to_world.translation();
-        ray.d = m_to_world.vector(d_cam) * (1.f / len);
+        ray.o = to_world().translation();
+        ray.d = to_world().vector(d_cam) * (1.f / len);
         ray.tmin = m_clip_start * len;
         ray.tmax = m_clip_end * len;
         return ray;
@@ -150,8 +157,8 @@ Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {
         // the aperture around that point and meet again focus_distance further on.
         const Vec3 o_cam(sx + lens.x, sy + lens.y, -m_clip_start);
         const Vec3 d_cam = dof ? normalize(Vec3(-lens.x, -lens.y, -m_focus_distance)) : Vec3(0.f, 0.f, -1.f);
-        ray.o = m_to_world.point(o_cam);
-        ray.d = normalize(m_to_world.vector(d_cam));
+        ray.o = to_world().point(o_cam);
+        ray.d = normalize(to_world().vector(d_cam));
         ray.tmin = 0.f;
         ray.tmax = (m_clip_end - m_clip_start) / -d_cam.z;
     } else {
@@ -163,8 +170,8 @@ Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {
             d_cam = d_cam * m_focus_distance - o_cam;
         }
         d_cam = normalize(d_cam);
-        ray.o = m_to_world.point(o_cam);
-        ray.d = normalize(m_to_world.vector(d_cam));
+        ray.o = to_world().point(o_cam);
+        ray.d = normalize(to_world().vector(d_cam));
         // Clip distances are measured along the view axis (the rays start on the z = 0 plane).
         const float inv_cos = 1.f / -d_cam.z;
         ray.tmin = m_clip_start * inv_cos;
@@ -260,13 +267,13 @@ Ray Camera::generate_panoramic_ray(Vec2 raster) const {
     const Vec3 d_cam = panorama_direction(u, v);
     Ray ray;
     ray.type = k_ray_camera;
-    ray.o = m_to_world.translation();
+    ray.o = to_world().translation();
     if (!(dot(d_cam, d_cam) > 0.f)) {  // outside the image circle: an empty ray
         ray.d = forward();
         ray.tmin = ray.tmax = 0.f;
         return ray;
     }
-    ray.d = normalize(m_to_world.vector(d_cam));
+    ray.d = normalize(to_world().vector(d_cam));
     // Clip distances along the ray (Cycles starts panoramic rays at the near clip distance).
     ray.tmin = m_clip_start;
     ray.tmax = m_clip_end;

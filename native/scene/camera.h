@@ -24,12 +24,15 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
+#include "core/motion_transform.h"
 #include "core/params.h"
 #include "core/transform.h"
 #include "core/vec.h"
 #include "scene/aperture.h"
 #include "scene/ray_visibility.h"
+#include "scene/shutter_time.h"
 
 namespace candela {
 
@@ -84,9 +87,17 @@ public:
     const Aperture& aperture() const { return m_aperture; }
     float focus_distance() const { return m_focus_distance; }
     /// Unit view direction (the camera's −Z axis); depth = dot(p − position(), forward()) (Cycles' Z depth).
-    Vec3 forward() const { return normalize(m_to_world.vector(Vec3(0.f, 0.f, -1.f))); }
+    Vec3 forward() const { return normalize(to_world().vector(Vec3(0.f, 0.f, -1.f))); }
 
-    Vec3 position() const { return m_to_world.translation(); }
+    Vec3 position() const { return to_world().translation(); }
+    /// Camera motion over the shutter (motion blur): camera_to_world sampled at evenly spaced shutter times (in
+    /// the space the constructor's was; translate() moves them too). Every query then uses the camera at the
+    /// thread's shutter_time() (scene/shutter_time.h): rays, connections, raster positions.
+    void set_motion(const std::vector<Affine>& steps);
+    bool moves() const { return m_moving; }
+    /// Camera → world at the thread's shutter time (the fixed transform when the camera does not move).
+    Affine to_world() const { return m_moving ? m_motion.at(shutter_time()) : m_to_world; }
+    Affine to_camera() const { return m_moving ? to_world().inverse() : m_to_camera; }
     /// The width of one pixel's footprint at `distance` from the camera (Cycles' compact ray differential of a
     /// camera ray: the pixel's size for an orthographic camera, distance × its angle at the image centre otherwise).
     float pixel_footprint(float distance) const {
@@ -155,7 +166,9 @@ private:
     bool to_lens_plane(const Ray& ray, Vec3* o_cam, Vec3* d_cam) const;
 
     Affine m_to_world;
-    Affine m_to_camera;  // m_to_world's inverse
+    Affine m_to_camera;        // m_to_world's inverse
+    MotionTransform m_motion;  // camera motion (set_motion), used when m_moving
+    bool m_moving = false;
     bool m_ortho = false;
     Panorama m_pano = Panorama::None;
     float m_pano_range[4] = {0.f, 0.f, 0.f, 0.f};  // equirectangular: φ = r0·u + r1, θ = r2·v + r3

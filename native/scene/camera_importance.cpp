@@ -97,12 +97,12 @@ bool Camera::viewplane_to_raster(float sx, float sy, Vec2* raster, float margin)
 }
 
 bool Camera::to_lens_plane(const Ray& ray, Vec3* o_cam, Vec3* d_cam) const {
-    Vec3 d = m_to_camera.vector(ray.d);
+    Vec3 d = to_camera().vector(ray.d);
     const float len = length(d);
     if (!(len > 0.f)) return false;
     d = d / len;
     if (!(d.z < 0.f)) return false;
-    const Vec3 o = m_to_camera.point(ray.o);
+    const Vec3 o = to_camera().point(ray.o);
     const float plane = m_ortho ? -m_clip_start : 0.f;
     *o_cam = o + d * ((plane - o.z) / d.z);
     o_cam->z = plane;
@@ -162,7 +162,7 @@ void Camera::pdf_we(const Ray& camera_ray, float* pdf_pos, float* pdf_dir, float
 
 bool Camera::connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out, float margin) const {
     if (!connectable()) return false;
-    const Vec3 p = m_to_camera.point(ref);
+    const Vec3 p = to_camera().point(ref);
     const float depth = -p.z;
     if (!(depth > 0.f && depth >= m_clip_start && depth <= m_clip_end)) return false;
     const bool dof = has_aperture();
@@ -179,8 +179,8 @@ bool Camera::connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out, float 
         const Vec3 to_lens = L - p;
         const float d_cam = length(to_lens);
         const float cos_theta = depth / d_cam;
-        c.lens_point = m_to_world.point(L);
-        c.wi = normalize(m_to_world.vector(to_lens));
+        c.lens_point = to_world().point(L);
+        c.wi = normalize(to_world().vector(to_lens));
         c.dist = length(c.lens_point - ref);
         const float cos3 = cos_theta * cos_theta * cos_theta;
         c.pdf_dir = 1.f / (image_plane_area() * cos3);
@@ -196,8 +196,8 @@ bool Camera::connect(const Vec3& ref, Vec2 u_lens, CameraConnection* out, float 
         const Vec3 back(lens.x, lens.y, f);  // toward the origin
         const float back_len = length(back);
         const float cos_theta = f / back_len;
-        c.lens_point = m_to_world.point(Vec3(p.x + t * lens.x, p.y + t * lens.y, -m_clip_start));
-        c.wi = normalize(m_to_world.vector(back));
+        c.lens_point = to_world().point(Vec3(p.x + t * lens.x, p.y + t * lens.y, -m_clip_start));
+        c.wi = normalize(to_world().vector(back));
         c.dist = length(c.lens_point - ref);
         const float a_view = image_plane_area();
         c.importance = 1.f / (a_view * cos_theta);

@@ -14,8 +14,8 @@ namespace candela {
 
 namespace {
 
-Affine camera_matrix(const SceneArrays& arrays) {
-    Affine m = Affine::from_rows(arrays.get("camera_to_world").data<float>());
+Affine camera_matrix(const float* rows16) {
+    Affine m = Affine::from_rows(rows16);
     // Only rotation and translation are meaningful; normalise columns so a scaled camera still works.
     for (int c = 0; c < 3; ++c) {
         const Vec3 col = m.column(c);
@@ -24,6 +24,18 @@ Affine camera_matrix(const SceneArrays& arrays) {
         for (int r = 0; r < 3; ++r) m.m[r][c] /= len;
     }
     return m;
+}
+Affine camera_matrix(const SceneArrays& arrays) { return camera_matrix(arrays.get("camera_to_world").data<float>()); }
+
+/// The camera with its motion over the shutter (camera_motion), if it moves.
+Camera make_camera(const SceneArrays& arrays, const Params& params) {
+    Camera camera(params, camera_matrix(arrays));
+    if (const Array* m = arrays.find("camera_motion")) {
+        std::vector<Affine> steps;
+        for (size_t i = 0; i < m->shape[0]; ++i) steps.push_back(camera_matrix(m->data<float>() + 16 * i));
+        camera.set_motion(steps);
+    }
+    return camera;
 }
 
 /// Every BSDF flag a closure of this type can produce for some input (bsdf/bsdf_sample.h).
@@ -45,8 +57,9 @@ uint32_t closure_flags(ClosureType type) {
 
 Scene::Scene(const SceneArrays& arrays, const Params& params, const CancelToken* cancel, MeshBvhCache* cache)
     : m_device(cache ? cache->device() : std::make_shared<EmbreeDevice>(params.get<int>("threads", 0))),
-      m_camera(params, camera_matrix(arrays)) {
-    m_offset = -m_camera.position();
+      m_camera(make_camera(arrays, params)) {
+    m_offset = -m_camera.position();  // a moving camera's at the shutter's middle
+    m_has_motion = m_camera.moves();
     m_camera.translate(m_offset);
     m_materials = load_materials(arrays);
     m_shaders = ShaderLibrary::load(arrays);
@@ -78,6 +91,17 @@ void Scene::set_camera(const Params& params, const Affine& camera_to_world) {
     Camera camera(params, camera_to_world);
     camera.translate(m_offset);  // into the camera-world space the scene was built in
     m_camera = camera;
+}
+
+const Scene::Placement& Scene::placement_now(uint32_t id, Placement& scratch) const {
+    const Placement& pl = m_placements[id];
+    if (pl.motion < 0) return pl;
+    scratch = pl;
+    scratch.object_to_world = m_motions[size_t(pl.motion)].at(shutter_time());
+    scratch.world_to_object = scratch.object_to_world.inverse();
+    scratch.normal_to_world = scratch.object_to_world.normal_matrix();
+    scratch.mirrored = scratch.object_to_world.determinant3() < 0.f;
+    return scratch;
 }
 
 Scene::~Scene() = default;

@@ -12,6 +12,7 @@
 
 #include "bsdf/material.h"
 #include "bsdf/material_inputs.h"
+#include "core/motion_transform.h"
 #include "core/parallel.h"
 #include "core/params.h"
 #include "core/transform.h"
@@ -128,6 +129,9 @@ public:
     bool terminator_lifts(const SurfaceHit& hit) const;
     /// Whether the camera or some object moves over the shutter (motion blur).
     bool has_motion() const { return m_has_motion; }
+    /// Whether some moving object emits light: it is rendered still, at the shutter's middle (its emissive
+    /// triangles are lights at fixed places), and the session says so.
+    bool has_still_moving_emitters() const { return m_still_emitters; }
 
     const Camera& camera() const { return m_camera; }
     /// Replaces the camera (camera params as the constructor reads them; camera_to_world rigid, in world space):
@@ -190,6 +194,9 @@ private:
     struct Builder;  // scene/scene_build.cpp
     friend struct Builder;
     void build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache);
+    /// Placement `id` at the thread's shutter time (scene/shutter_time.h): the stored one for an object that does
+    /// not move, else a copy in `scratch` with its transforms interpolated.
+    const Placement& placement_now(uint32_t id, Placement& scratch) const;
     /// The SurfaceHit of Embree's hit (geometry, triangle, instance ids, barycentrics, unnormalised Ng) at
     /// distance t along `ray`.
     void decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t inst, float u, float v,
@@ -236,13 +243,15 @@ private:
     std::vector<uint8_t> m_object_flags;    // per top-level geometry id: ObjectFlag bits
     std::vector<float> m_material_holdout;  // per material (constant weights), or empty (no Holdout closures)
     bool m_has_holdouts = false;
-    uint32_t m_hidden_from = 0;            // ray types some object is invisible to (they need the filter)
-    bool m_any_coplanar = false;           // some object has the coplanar geometry filter
-    bool m_any_transparent = false;        // some material has a Transparent closure (transparent shadows)
-    bool m_world_path_dependent = false;   // the world shader reads the Light Path node
-    bool m_any_terminator_offset = false;  // some object has a shadow terminator offset
-    bool m_any_bent_normal = false;        // some material bends its normal (Bump, Normal Map): bump shadowing
-    bool m_has_motion = false;             // motion blur: the camera or an object moves over the shutter
+    uint32_t m_hidden_from = 0;              // ray types some object is invisible to (they need the filter)
+    bool m_any_coplanar = false;             // some object has the coplanar geometry filter
+    bool m_any_transparent = false;          // some material has a Transparent closure (transparent shadows)
+    bool m_world_path_dependent = false;     // the world shader reads the Light Path node
+    bool m_any_terminator_offset = false;    // some object has a shadow terminator offset
+    bool m_any_bent_normal = false;          // some material bends its normal (Bump, Normal Map): bump shadowing
+    bool m_has_motion = false;               // motion blur: the camera or an object moves over the shutter
+    bool m_still_emitters = false;           // a moving emitter is rendered at the shutter's middle
+    std::vector<MotionTransform> m_motions;  // per moving instance (Placement::motion), camera-world space
     Camera m_camera;
     std::vector<Material> m_materials;
     std::shared_ptr<const ShaderLibrary> m_shaders;

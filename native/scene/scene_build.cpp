@@ -12,6 +12,7 @@
 #include "scene/mesh_bvh_cache.h"
 #include "scene/scene.h"
 #include "scene/scene_parts.h"
+#include "scene/shutter_time.h"
 
 namespace candela {
 
@@ -48,6 +49,7 @@ struct Scene::Builder {
     const Array* color_arr;
     const Array* random_arr;
     const Array* terminator_arr;
+    const Array* motion_arr;  // instance_motion: every instance's transform at evenly spaced shutter times
     size_t mesh_count, instance_count;
     std::vector<MeshRange> ranges;
     std::vector<uint32_t> uses;  // instances of each mesh
@@ -74,6 +76,7 @@ struct Scene::Builder {
           color_arr(a.find("instance_color")),
           random_arr(a.find("instance_random")),
           terminator_arr(a.find("instance_terminator")),
+          motion_arr(a.find("instance_motion")),
           mesh_count(a.rows("mesh_tri_start") - 1),
           instance_count(a.rows("instance_mesh")) {}
 
@@ -89,6 +92,37 @@ struct Scene::Builder {
         Affine xf = Affine::from_rows(instance_xf + 16 * i);
         for (int r = 0; r < 3; ++r) xf.m[r][3] += scene.m_offset[r];
         return xf;
+    }
+
+    /// Instance i's motion over the shutter (camera-world space), or no steps if it does not move (every sample
+    /// the same matrix).
+    std::vector<Affine> motion_steps(size_t i) const {
+        if (!motion_arr) return {};
+        const size_t n = motion_arr->shape[1];
+        const float* m = motion_arr->data<float>() + 16 * n * i;
+        bool moves = false;
+        for (size_t k = 1; k < n && !moves; ++k)
+            for (int e = 0; e < 12; ++e) moves |= m[16 * k + e] != m[e];
+        if (!moves) return {};
+        std::vector<Affine> steps;
+        for (size_t k = 0; k < n; ++k) {
+            Affine xf = Affine::from_rows(m + 16 * k);
+            for (int r = 0; r < 3; ++r) xf.m[r][3] += scene.m_offset[r];
+            if (!std::isfinite(xf.determinant3()) || std::fabs(xf.determinant3()) < 1e-30f)
+                throw InvalidScene("instance " + std::to_string(i) +
+                                   " has a degenerate (zero-scale) transform at "
+                                   "motion step " +
+                                   std::to_string(k));
+            steps.push_back(xf);
+        }
+        return steps;
+    }
+    /// Whether mesh m has emissive triangles (a moving emitter stays still: its triangles are lights).
+    bool mesh_emits(uint32_t m) const {
+        for (uint32_t t = ranges[m].tri_begin; t < ranges[m].tri_end; ++t)
+            if (scene.m_materials[tri_material[t]].is_emissive() || scene.varying_emission(tri_material[t]))
+                return true;
+        return false;
     }
 
     /// Vertex range and use count of every mesh.
@@ -313,13 +347,40 @@ struct Scene::Builder {
         return scene.m_mesh_scenes[size_t(mesh_scene[m])]->get();
     }
 
-    /// An Embree instance of a shared mesh's BVH.
-    void add_instance(Placement pl, const Affine& xf, uint8_t flags) {
+    /// An Embree instance of a shared mesh's BVH; a moving one (`motion`) gets one transform per motion step,
+    /// decomposed as MotionTransform interpolates them (Embree's quaternion motion: shading interpolates the same).
+    void add_instance(Placement pl, const Affine& xf, uint8_t flags, const MotionTransform* motion = nullptr) {
         const uint32_t m = pl.mesh;
         const RTCScene bvh = mesh_bvh(m);
         RTCGeometry inst = rtcNewGeometry(scene.m_device->get(), RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(inst, bvh);
-        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &xf.m[0][0]);
+        if (motion) {
+            rtcSetGeometryTimeStepCount(inst, unsigned(motion->steps()));
+            for (size_t k = 0; k < motion->steps(); ++k) {
+                const DecomposedTransform& d = motion->step(k);
+                RTCQuaternionDecomposition q;
+                rtcInitQuaternionDecomposition(&q);
+                q.scale_x = d.s[0][0];
+                q.skew_xy = d.s[0][1];
+                q.skew_xz = d.s[0][2];
+                q.shift_x = d.s[0][3];
+                q.scale_y = d.s[1][1];
+                q.skew_yz = d.s[1][2];
+                q.shift_y = d.s[1][3];
+                q.scale_z = d.s[2][2];
+                q.shift_z = d.s[2][3];
+                q.quaternion_r = d.q[0];
+                q.quaternion_i = d.q[1];
+                q.quaternion_j = d.q[2];
+                q.quaternion_k = d.q[3];
+                q.translation_x = d.t.x;
+                q.translation_y = d.t.y;
+                q.translation_z = d.t.z;
+                rtcSetGeometryTransformQuaternion(inst, unsigned(k), &q);
+            }
+        } else {
+            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &xf.m[0][0]);
+        }
         rtcCommitGeometry(inst);
         const unsigned id = rtcAttachGeometry(scene.m_top.get(), inst);
         rtcReleaseGeometry(inst);
@@ -330,10 +391,14 @@ struct Scene::Builder {
         // Camera-world magnitude of the instance: its object-space bounds' corners, transformed.
         RTCBounds ob;
         rtcGetSceneBounds(bvh, &ob);
-        for (int corner = 0; corner < 8; ++corner) {
-            const Vec3 q = xf.point(Vec3(corner & 1 ? ob.upper_x : ob.lower_x, corner & 2 ? ob.upper_y : ob.lower_y,
-                                         corner & 4 ? ob.upper_z : ob.lower_z));
-            pl.magnitude = std::max({pl.magnitude, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+        const size_t samples = motion ? 4 * motion->steps() : 1;  // a moving one's along its motion
+        for (size_t k = 0; k < samples; ++k) {
+            const Affine at = motion ? motion->at(float(k) / float(samples - 1)) : xf;
+            for (int corner = 0; corner < 8; ++corner) {
+                const Vec3 q = at.point(Vec3(corner & 1 ? ob.upper_x : ob.lower_x, corner & 2 ? ob.upper_y : ob.lower_y,
+                                             corner & 4 ? ob.upper_z : ob.lower_z));
+                pl.magnitude = std::max({pl.magnitude, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+            }
         }
         place(id, pl, flags);
         ++scene.m_stats.instances;
@@ -359,7 +424,13 @@ struct Scene::Builder {
             check_cancel();
             const uint32_t m = instance_mesh[i];
             if (ranges[m].empty()) continue;  // a mesh without faces draws nothing
-            const Affine xf = instance_transform(i);
+            std::vector<Affine> steps = motion_steps(i);
+            if (!steps.empty() && mesh_emits(m)) {  // its triangles are lights: it stays at the shutter's middle
+                scene.m_still_emitters = true;
+                steps.clear();
+            }
+            const MotionTransform motion(steps);
+            const Affine xf = steps.empty() ? instance_transform(i) : motion.at(k_shutter_middle);
             if (!std::isfinite(xf.determinant3()) || std::fabs(xf.determinant3()) < 1e-30f)
                 throw InvalidScene("instance " + std::to_string(i) + " has a degenerate (zero-scale) transform");
             Placement pl;
@@ -379,10 +450,16 @@ struct Scene::Builder {
             pl.object_to_world = xf;
             pl.world_to_object = xf.inverse();
             scene.m_stats.instanced_triangles += ranges[m].tri_end - ranges[m].tri_begin;
-            if (uses[m] == 1 && !cache)
+            if (!steps.empty()) {
+                pl.motion = int32_t(scene.m_motions.size());
+                scene.m_motions.push_back(motion);
+                scene.m_has_motion = true;
+                add_instance(pl, xf, flags, &scene.m_motions.back());
+            } else if (uses[m] == 1 && !cache) {
                 add_flattened(i, pl, xf, flags);
-            else
+            } else {
                 add_instance(pl, xf, flags);
+            }
         }
         rtcCommitScene(scene.m_top.get());
         check_cancel();

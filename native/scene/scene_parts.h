@@ -39,6 +39,8 @@ struct Scene::Placement {
     Vec3 color{1.f};  // Object Info > Color, Alpha, Random (instance_color, instance_random)
     float alpha = 1.f, random = 0.f;
     float terminator_offset = 0.f;  // Cycles' Shadow Terminator > Geometry Offset (instance_terminator)
+    int32_t motion = -1;            // a moving instance's MotionTransform (Scene::m_motions), −1 if it stays;
+                                    // its transforms above are then those at the shutter's middle
 };
 
 }  // namespace candela

@@ -49,7 +49,8 @@ bool Scene::terminator_lifts(const SurfaceHit& hit) const {
 
 Vec3 Scene::terminator_point(const SurfaceHit& hit, const Vec3& ns_side, const Vec3& ng_side, const Vec3& wl) const {
     if (!m_any_terminator_offset) return hit.p;
-    const Placement& pl = m_placements[hit.object];
+    Placement moved;
+    const Placement& pl = placement_now(hit.object, moved);
     const float cutoff = pl.terminator_offset;
     const MeshShading& s = m_shading[pl.mesh];
     const uint32_t prim = hit.primitive.prim;

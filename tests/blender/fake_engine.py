@@ -78,6 +78,12 @@ class FakeEngine:
     def update_stats(self, stats, info):
         self.stats.append(info)
 
+    def frame_set(self, frame, subframe=0.0):
+        """RenderEngine.frame_set: motion blur samples the scene at subframes (export/motion.py)."""
+        import bpy
+        self.frames = getattr(self, "frames", []) + [(frame, subframe)]
+        bpy.context.scene.frame_set(frame, subframe=subframe)
+
     def report(self, kind, message):
         self.reports.append((kind, message))
 

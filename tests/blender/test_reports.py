@@ -41,6 +41,7 @@ def add_linked_output(material, socket_name):
 def test_ignored_settings_are_named_once_per_render():
     scene = scenes.tiny_scene(width=16, height=12, samples=1)
     scene.render.use_motion_blur = True
+    scene.cycles.rolling_shutter_type = 'TOP'   # motion blur renders; its rolling shutter does not
     layer = bpy.context.view_layer
     layer.material_override = bpy.data.materials["Grey"]
     layer.use_pass_mist = layer.use_pass_diffuse_color = layer.use_pass_emit = True
@@ -52,7 +53,7 @@ def test_ignored_settings_are_named_once_per_render():
     volume = scenes.link(scene, bpy.data.objects.new("Smoke", bpy.data.volumes.new("Smoke")))
     assert volume.type == 'VOLUME'
     warnings = warnings_of(render())
-    expected = ["Motion Blur", "Material Override 'Grey'", "Mist pass", "Diffuse Color pass", "Emit pass",
+    expected = ["Rolling Shutter", "Material Override 'Grey'", "Mist pass", "Diffuse Color pass", "Emit pass",
                 "material 'Grey': the Volume output", "material 'Grey': the Displacement output's true displacement",
                 "hair particle system 'Hair'", "object 'Smoke' is a volume"]
     for text in expected:
@@ -81,6 +82,7 @@ def test_a_plain_scene_has_no_such_warnings():
 def test_latest_warning_stays_in_the_status_line_and_memory_is_candelas():
     scene = scenes.tiny_scene(width=16, height=12, samples=1)
     scene.render.use_motion_blur = True
+    scene.cycles.rolling_shutter_type = 'TOP'
     bpy.context.view_layer.use_pass_mist = True
     engine = render()
     final = engine.stats[-1]
@@ -104,9 +106,10 @@ def test_previews_are_cheap_and_never_touch_the_final_render_record():
 def test_each_render_has_its_own_warnings():
     scene = scenes.tiny_scene(width=16, height=12, samples=1)
     scene.render.use_motion_blur = True
+    scene.cycles.rolling_shutter_type = 'TOP'
     first = render()
     scene.render.use_motion_blur = False
     second = render()
     from candela import render_loop
-    assert any("Motion Blur" in w for w in warnings_of(first))
+    assert any("Rolling Shutter" in w for w in warnings_of(first))
     assert render_loop.last_render_stats["warnings"] == [] and warnings_of(second) == []

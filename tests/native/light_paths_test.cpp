@@ -371,16 +371,17 @@ TEST(LightPathNode, IntegratorsThatCannotHonourItSaySo) {
 }
 
 TEST(LightPathNode, LightRootedIntegratorsSayWhatTheyDoNotHonour) {
-    // The registry's LIGHT and BDPT honour none of the camera-path features but bump shadowing (VertexBsdf's); PATH
-    // all but motion blur (not rendered by any integrator yet).
+    // The registry's LIGHT and BDPT honour none of the camera-path features but bump shadowing (VertexBsdf's) and
+    // motion blur (one shutter time per path); PATH all of them.
     for (const char* name : {"LIGHT", "BDPT"}) {
         Params p = basic_params(4, 4, 1, 1);
         p.set("integrator", std::string(name));
-        EXPECT_EQ(make_integrator(p)->honoured_features(), k_feature_bump_shadowing) << name;
+        EXPECT_EQ(make_integrator(p)->honoured_features(), k_feature_bump_shadowing | k_feature_motion_blur) << name;
     }
     Params p = basic_params(4, 4, 1, 1);
     EXPECT_EQ(make_integrator(p)->honoured_features(), k_feature_light_path | k_feature_transparent_shadows |
-                                                           k_feature_terminator_offset | k_feature_bump_shadowing);
+                                                           k_feature_terminator_offset | k_feature_bump_shadowing |
+                                                           k_feature_motion_blur);
 }
 
 // ---- bump shadowing in every integrator ------------------------------------------------------------------------

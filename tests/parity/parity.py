@@ -48,7 +48,7 @@ QUICK_SIZE, QUICK_SAMPLES = 48, 64
 ALL_SCENES = ["point", "point_radius", "spot_blend", "sun_angle", "area_square", "area_rect", "area_disk",
               "area_ellipse", "emissive_quad", "cornell_area_light", "cornell_emissive_quad",
               "cornell_quad_near_ceiling", "principled_spheres", "environment", "glossy_cycles_defaults",
-              "glass_cycles_defaults"]
+              "glass_cycles_defaults", "moving_cube", "camera_pan"]
 # Scenes left out of the quick run (none: the two that waited for path tracer fixes, cornell_area_light and
 # cornell_quad_near_ceiling, pass since camera rays skip camera-hidden lights and shadow rays aim from the offset
 # origin at the light point).

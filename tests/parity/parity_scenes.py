@@ -306,6 +306,63 @@ def _sun_hdr_scene(interpolation):
     return build
 
 
+def _linear_keys(ob, path, frames_values):
+    """Keyframes of `ob`'s property `path` (frame → value), linearly interpolated (no easing)."""
+    for frame, value in frames_values:
+        setattr(ob, path, value)
+        ob.keyframe_insert(path, frame=frame)
+    for fc in ob.animation_data.action.fcurves:
+        for kp in fc.keyframe_points:
+            kp.interpolation = "LINEAR"
+
+
+def _motion_room(scene, back=(0.5, 0.55, 0.6)):
+    """A floor and back wall under an area light, lit also by a dim world: the motion scenes' stage."""
+    ex.rectangle(scene, "Floor", ex.diffuse("Floor", (0.6, 0.6, 0.6)), Matrix.Diagonal((6, 6, 1, 1)))
+    ex.rectangle(scene, "Back", ex.diffuse("Back", back),
+                 Matrix.Translation((0, 2.0, 2.0)) @ Matrix.Rotation(math.radians(90.0), 4, "X")
+                 @ Matrix.Diagonal((6, 2, 1, 1)))
+    light(scene, "Key", "AREA", (1.0, -2.0, 3.5), 400.0, rotation_deg=(35.0, 0.0, 15.0), shape="RECTANGLE",
+          size=1.0, size_y=0.6)
+    ex.world(scene, (0.6, 0.7, 1.0), 0.2)
+
+
+def build_moving_cube(scene, **_):
+    """Motion blur of an object (Shutter 0.5, Position Center, Motion Steps 1: three samples): a light 1 m cube in
+    front of a dark wall, sliding 4 m and turning 90° per frame (linear keys at frames 0 and 2), so over the shutter
+    around frame 1 it sweeps 2 m and 45°, its shadow blurring with it."""
+    _motion_room(scene, back=(0.05, 0.05, 0.06))
+    cube = ex.cube(scene, "Cube", ex.diffuse("Cube", (0.9, 0.8, 0.7)),
+                   Matrix.Translation((0.0, 0.0, 0.5)) @ Matrix.Diagonal((0.5, 0.5, 0.5, 1)))
+    _linear_keys(cube, "location", [(0, (-4.0, 0.0, 0.5)), (2, (4.0, 0.0, 0.5))])
+    _linear_keys(cube, "rotation_euler", [(0, (0.0, 0.0, 0.0)), (2, (0.0, 0.0, math.radians(180.0)))])
+    ex.camera(scene, (0.0, -6.0, 1.6), (80.0, 0.0, 0.0), lens=42.0)
+    scene.frame_set(1)
+    return 2.0
+
+
+def build_camera_pan(scene, **_):
+    """Motion blur of the camera (Shutter 0.5, Position Start: the frame opens the shutter): still spheres and a
+    box seen by a camera panning 20° per frame (linear keys at frames 0 and 2), so 10° over the shutter from
+    frame 1."""
+    _motion_room(scene)
+    ex.sphere(scene, "Diffuse", ex.diffuse("Diffuse", (0.8, 0.4, 0.2)), (-0.9, 0.0, 0.5), 0.5)
+    ex.sphere(scene, "Glossy", ex.glossy("Glossy", (0.8, 0.8, 0.8), 0.3, "GGX"), (0.3, 0.3, 0.5), 0.5)
+    ex.cube(scene, "Box", ex.diffuse("Box", (0.3, 0.5, 0.3)),
+            Matrix.Translation((1.3, -0.4, 0.3)) @ Matrix.Rotation(math.radians(25.0), 4, "Z")
+            @ Matrix.Diagonal((0.3, 0.3, 0.3, 1)))
+    cam = ex.camera(scene, (0.0, -5.0, 2.2), (72.0, 0.0, 0.0), lens=40.0)
+    _linear_keys(cam, "rotation_euler", [(0, tuple(math.radians(a) for a in (72.0, 0.0, 20.0))),
+                                         (2, tuple(math.radians(a) for a in (72.0, 0.0, -20.0)))])
+    scene.frame_set(1)
+    return 1.5
+
+
+# Motion blur scenes: Render Properties > Motion Blur on (after configure_render, which turns it off), with Cycles'
+# shutter position.
+MOTION_SCENES = {"moving_cube": "CENTER", "camera_pan": "START"}
+
+
 def _lights():
     h = LIGHT_HEIGHT
     return {
@@ -339,6 +396,8 @@ SCENES.update({
     "environment": build_environment,
     "glossy_cycles_defaults": build_glossy_cycles_defaults,
     "glass_cycles_defaults": build_glass_cycles_defaults,
+    "moving_cube": build_moving_cube,
+    "camera_pan": build_camera_pan,
 })
 # Not in the default list until Candela reads Environment Texture nodes (issue #3, h-textures): run it with
 # `--scenes environment_hdr`, then add it to parity.py's ALL_SCENES.
@@ -366,6 +425,10 @@ def build(name, scene=None, size=128, threads=0, out_dir="."):
     scene.render.resolution_y = max(1, round(size / aspect))
     cb.configure_cycles(scene, threads=threads)
     cb.configure_candela(scene, threads=threads)
+    if name in MOTION_SCENES:
+        scene.render.use_motion_blur = True
+        scene.render.motion_blur_shutter = 0.5
+        scene.cycles.motion_blur_position = MOTION_SCENES[name]
     if name.endswith("_cycles_defaults"):
         for key, value in CYCLES_DEFAULT_LIGHT_PATHS.items():
             setattr(scene.cycles, key, value)

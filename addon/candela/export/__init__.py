@@ -12,6 +12,7 @@ import numpy as np
 
 from .. import schema
 from .camera import camera_to_world, render_camera
+from .motion import instance_key
 from .common import ExportError, Warnings
 from .geometry import GeometryTable, random_from_id
 from .lights import LightTable
@@ -88,7 +89,7 @@ def name_objects(message, names):
 
 
 def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None, names=None, mesh_reader=None,
-                 camera_matrix=None, image_cache=None):
+                 camera_matrix=None, image_cache=None, motion=None):
     """Export the evaluated scene seen through `camera` (an original camera object, see render_camera), or from
     `camera_matrix` (a 4x4 camera → world matrix: the 3D view's) when `camera` is None. `mesh_reader`: how
     meshes are read (default export/mesh.py read_mesh; the viewport passes its cache's); `image_cache` a dict
@@ -101,8 +102,8 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
     lights = LightTable(warnings)
     bits = schema.instance_flags()
     view_layer = _original_view_layer(depsgraph)
-    # Motion blur is reported with the other ignored settings (unsupported.ignored_settings): objects and camera are
-    # exported at the current frame's time only.
+    # Motion blur: `motion` (a dict, if given) gets each instance's key and motion steps, for export/motion.py's
+    # motion_arrays, which samples the transforms over the shutter (it moves Blender's frame: the caller runs it).
 
     for i, inst in enumerate(depsgraph.object_instances):
         if i % BREAK_EVERY == BREAK_EVERY - 1:
@@ -122,7 +123,7 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
         elif inst.show_self:
             random = random_from_id(inst.random_id) if inst.is_instance else None
             geometry.add(ob, matrix, flags=object_flags(inst, view_layer, bits), pass_index=ob.pass_index,
-                         random=random)
+                         random=random, motion_key=instance_key(inst) if motion is not None else None)
 
     world = world_arrays(scene.world, warnings, tables)
     if geometry.triangle_count == 0 and not lights.rows and not _world_emits(world):
@@ -138,6 +139,9 @@ def export_scene(depsgraph, camera, test_break=None, status=None, warnings=None,
     if camera is not None:
         camera_matrix = camera.original.evaluated_get(depsgraph).matrix_world
     arrays["camera_to_world"] = camera_to_world(camera_matrix)
+    if motion is not None:
+        motion["keys"] = geometry.instance_keys
+        motion["steps"] = geometry.motion_steps
     arrays.update(world)
     arrays.update(tables.arrays())   # after every material and the world: the programs and their bindings
     return arrays

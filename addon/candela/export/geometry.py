@@ -9,6 +9,7 @@ import numpy as np
 
 from .common import ExportError
 from .mesh import read_mesh
+from .motion import object_steps
 
 
 class GeometryTable:
@@ -28,6 +29,8 @@ class GeometryTable:
         self.terminators = []       # per instance: Cycles' shadow terminator geometry offset
         self.mesh_objects = []      # per mesh: names of the objects drawing it (for messages)
         self.instance_objects = []  # per instance: its object's name
+        self.instance_keys = []     # per instance: export/motion.py instance_key (motion blur finds it again)
+        self.motion_steps = []      # per instance: its motion samples (export/motion.py object_steps; 0 = still)
 
     def _key(self, ob, slots):
         # Modified objects get their own evaluated mesh, so their pointer is distinct; linked duplicates share one.
@@ -35,10 +38,11 @@ class GeometryTable:
         data_ptr = ob.data.as_pointer() if ob.type == 'MESH' and ob.data is not None else ob.as_pointer()
         return data_ptr, tuple(m.as_pointer() if m is not None else 0 for m in slots)
 
-    def add(self, ob, matrix, flags=0x1F, pass_index=0, random=None):
+    def add(self, ob, matrix, flags=0x1F, pass_index=0, random=None, motion_key=None):
         """Add one instance of the evaluated object `ob` with object → world `matrix` ((4, 4) float32), its
         `instance_flags` bits (default: visible to every ray, no holdout), pass index and Object Info > Random
-        (default: Cycles' hash of the object's name)."""
+        (default: Cycles' hash of the object's name); `motion_key`: what identifies the instance at other
+        subframes (export/motion.py instance_key), kept for motion blur."""
         # Blender keeps an infinite scale as a huge finite matrix: treat anything beyond 1e30 as not finite.
         if not np.isfinite(matrix).all() or np.abs(matrix).max() > 1e30:
             raise ExportError(f"object '{ob.name}' has a non-finite transform (NaN or Inf in its location, "
@@ -58,6 +62,8 @@ class GeometryTable:
             cycles = getattr(ob, "cycles", None)
             self.terminators.append(float(getattr(cycles, "shadow_terminator_geometry_offset", 0.1)))
             self.instance_objects.append(ob.name)
+            self.instance_keys.append(motion_key)
+            self.motion_steps.append(object_steps(ob))
             if len(self.mesh_objects[index]) < 4:
                 self.mesh_objects[index].append(ob.name)
 

@@ -54,7 +54,8 @@ public:
             strategies.emplace(std::min(m_settings.strategy_depth, m_settings.max_bounces + 1), film.width(),
                                film.height(), film.origin_x(), film.origin_y());
         const PixelSampling& ps = m_settings.pixel;
-        const CameraTilePass<BdptTracer> tiles(scene, film, ctx, ps, tracer);
+        // Motion blur: the camera and light subpaths of one sample share its shutter time (CameraTilePass).
+        const CameraTilePass<BdptTracer> tiles(scene, film, ctx, ps, tracer, /*motion_blur=*/true);
         const double frame_pixels = double(scene.camera().full_width()) * scene.camera().full_height();
         struct TileSplats {
             SplatBuffer buffer;
@@ -96,7 +97,7 @@ public:
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
     // Its BSDF is VertexBsdf's, which applies bump shadowing (tests/native/light_paths_test.cpp).
-    uint32_t honoured_features() const override { return k_feature_bump_shadowing; }
+    uint32_t honoured_features() const override { return k_feature_bump_shadowing | k_feature_motion_blur; }
 
 private:
     BdptSettings m_settings;

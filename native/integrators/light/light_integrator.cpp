@@ -7,6 +7,7 @@
 #include "core/parallel_ordered.h"
 #include "integrators/camera_tiles.h"
 #include "integrators/light/light_tracer.h"
+#include "scene/shutter_time.h"
 
 namespace candela {
 
@@ -49,7 +50,8 @@ public:
                 break;
             }
         const SpecularCameraTracer camera_tracer(scene, m_settings);
-        const CameraTilePass<SpecularCameraTracer> camera_pass(scene, film, ctx, m_settings.pixel, camera_tracer);
+        const CameraTilePass<SpecularCameraTracer> camera_pass(scene, film, ctx, m_settings.pixel, camera_tracer,
+                                                               /*motion_blur=*/true);
         const LightTracer tracer(scene, m_settings, emitters);
         const PixelSampling& ps = m_settings.pixel;
         const double frame_pixels = double(scene.camera().full_width()) * scene.camera().full_height();
@@ -73,12 +75,16 @@ public:
                     for (int s = begin; s < end; ++s) {
                         const uint32_t r = noise_replicate_of(uint32_t(s));
                         Sampler& sampler = replicates[r];
-                        std::visit(
+                        // A light path's shutter time (motion blur): its emission, bounces and camera connections
+                        // all see the scene and the camera at that time.
+                        const float time = std::visit(
                             [&](auto& c) {
                                 c.start_pixel_sample(uint32_t(film.origin_x() + x), uint32_t(film.origin_y() + y),
                                                      index_in_replicate(uint32_t(s)));
+                                return shutter_time_of(c.sample_stream_key());
                             },
                             sampler);
+                        const ShutterScope scope(time);
                         tracer.trace(sampler, dim_bounce, r, out.buffer, stats);
                     }
             }
@@ -116,7 +122,8 @@ public:
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "light path"}; }
     // Its BSDF is VertexBsdf's, which applies bump shadowing (tests/native/light_paths_test.cpp).
-    uint32_t honoured_features() const override { return k_feature_bump_shadowing; }
+    // Motion blur: one shutter time per light path and per camera path (the camera pass).
+    uint32_t honoured_features() const override { return k_feature_bump_shadowing | k_feature_motion_blur; }
 
 private:
     LightSettings m_settings;

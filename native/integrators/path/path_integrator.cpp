@@ -16,13 +16,13 @@ public:
         // The scene keeps its light samplers: a viewport restart (a new view, a coarse level) reuses the light tree.
         const LightSampler& light_sampler = scene.light_sampler(parse_light_selection(m_settings.light_selection));
         const PathTracer tracer(scene, m_settings, light_sampler);
-        render_camera_progressive(scene, film, ctx, m_settings.pixel, tracer);
+        render_camera_progressive(scene, film, ctx, m_settings.pixel, tracer, /*motion_blur=*/true);
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
     uint32_t honoured_features() const override {
-        // Not k_feature_motion_blur: no integrator renders motion yet (the add-on warns when a scene asks for it).
+        // Motion blur: one shutter time per camera path (CameraTilePass::render_moving).
         return k_feature_light_path | k_feature_transparent_shadows | k_feature_terminator_offset |
-               k_feature_bump_shadowing;
+               k_feature_bump_shadowing | k_feature_motion_blur;
     }
 
 private:
