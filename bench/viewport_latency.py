@@ -43,6 +43,8 @@ def parse_args():
     ap.add_argument("--view-trials", type=int, default=5)
     ap.add_argument("--f12-trials", type=int, default=3)
     ap.add_argument("--docs", default=None, help="also write DOCS/viewport_latency.md")
+    ap.add_argument("--reuse", action="store_true",
+                    help="keep the results of scene/engine runs already complete in --out (same trial counts)")
     return ap.parse_args()
 
 
@@ -52,8 +54,21 @@ def clean_env(extra):
     return env
 
 
-def measure(build, scene, engine, work, view_trials, f12_trials, settle):
+def reused(run_dir, view_trials, f12_trials):
+    """An earlier complete measurement of the same trials in run_dir (--reuse), else None."""
+    path = run_dir / "latency.json"
+    if not path.exists():
+        return None
+    result = json.loads(path.read_text())
+    if len(result["view_change"]) != view_trials or len(result["f12"]) != f12_trials:
+        return None
+    return result
+
+
+def measure(build, scene, engine, work, view_trials, f12_trials, settle, reuse=False):
     run_dir = work / f"{scene}_{engine.lower()}"
+    if reuse and reused(run_dir, view_trials, f12_trials) is not None:
+        return reused(run_dir, view_trials, f12_trials)
     shutil.rmtree(run_dir, ignore_errors=True)
     (run_dir / "fb").mkdir(parents=True)
     blender = [str(REPO / "bin" / "candela-blender"), "--factory-startup", "-noaudio"]
@@ -158,7 +173,7 @@ def main():
     for scene in scenes:
         row = {"scene": scene}
         for engine in ENGINES:
-            result = measure(args.build, scene, engine, out, view_trials, f12_trials, args.settle)
+            result = measure(args.build, scene, engine, out, view_trials, f12_trials, args.settle, args.reuse)
             row[engine] = result
             print(f"{scene:12s} {engine:8s} view change {median_ms(result['view_change'])} ms "
                   f"(Solid shading {median_ms(result['redraw_floor'])} ms), F12 {median_ms(result['f12'])} ms",
