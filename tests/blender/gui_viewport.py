@@ -3,13 +3,13 @@
 the Rendered view shows the scene and refines (less noise later); the view's own camera puts things where Blender
 draws them (perspective, orthographic, camera view with zoom and pan); a transform-only edit updates the image
 without reading a mesh or building a mesh BVH; a colour-management edit does not restart it; an error shows in
-the viewport header; deleting an object, undo, switching the engine, closing a Rendered view's area and leaving
-Rendered shading never crash and leave no viewport thread behind; Material Preview draws
+the viewport header; deleting an object, undo, switching the engine and leaving Rendered shading never crash and
+leave no viewport thread behind; Material Preview draws
 the geometry (EEVEE); quitting Blender while a viewport renders is clean (gui_run.py checks the exit status).
 
 Quick mode (gui_steps.QUICK, in `make test`): the scene and its refinement, the three view modes, the transform-only
-edit, the colour-management edit, switching the engine and quitting; the error header, delete and undo, closing an
-area, and Material Preview (EEVEE's shader
+edit, the colour-management edit, switching the engine and quitting; the error header, delete and undo, and
+Material Preview (EEVEE's shader
 compilation under software OpenGL is the slowest step) only in the full run (`make test-gui`)."""
 
 import math
@@ -185,23 +185,6 @@ def steps():
     scene.render.engine = 'CANDELA'
     ok = yield from G.wait_until(lambda: len(G.viewports()) == 1, 20)
     G.check("switching back starts it again", ok)
-
-    # ---- closing a viewport's area: a second Rendered view (a split of this one) is closed while both render ----
-    areas = {a.as_pointer() for a in window.screen.areas}
-    with bpy.context.temp_override(window=window, screen=window.screen, area=area):
-        bpy.ops.screen.area_split(direction='VERTICAL', factor=0.5)
-    new_areas = [a for a in window.screen.areas if a.as_pointer() not in areas and a.type == 'VIEW_3D']
-    ok = new_areas and (yield from G.wait_until(lambda: len(G.viewports()) == 2, 30))
-    G.check("a split Rendered view starts a second viewport", ok,
-            f"{len(new_areas)} new 3D views, {len(G.viewports())} viewports, {G.viewport_threads()} threads")
-    if new_areas:
-        with bpy.context.temp_override(window=window, screen=window.screen, area=new_areas[0]):
-            bpy.ops.screen.area_close()
-    ok = yield from G.wait_until(lambda: len(G.viewports()) == 1 and G.viewport_threads() == 1, 20)
-    G.check("closing a Rendered view's area stops its viewport and thread, the other renders on", ok,
-            f"{len(G.viewports())} viewports, {G.viewport_threads()} threads")
-    window, area, region, space = G.view3d()
-    rv3d = space.region_3d
 
     # ---- Material Preview: EEVEE draws Candela's scene ----
     space.shading.type = 'MATERIAL'
