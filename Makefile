@@ -101,10 +101,10 @@ robustness-report: build
 	$(CLEAN_ENV) $(PYTHON) tests/robustness/report.py --build $(BUILD)
 
 # View change -> first image and F12 -> first pixels in Blender's window (Xvfb), Candela beside Cycles, on the example
-# scenes and a 1-million-triangle scene, with Blender's redraw floor beside them (about 30 minutes; `make test`
-# runs a quick mode).
+# scenes and a 1-million-triangle scene, with Blender's redraw floor beside them; writes docs/viewport_latency.md
+# (about 30 minutes; `make test` runs a quick mode).
 viewport-latency: build
-	$(CLEAN_ENV) $(PYTHON) bench/viewport_latency.py --build $(BUILD)
+	$(CLEAN_ENV) $(PYTHON) bench/viewport_latency.py --build $(BUILD) --docs docs
 
 # The full GUI tests (Rendered viewport, Material Preview, robustness, stress; Xvfb); `make test` runs their quick
 # modes.

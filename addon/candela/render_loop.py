@@ -155,7 +155,7 @@ def _forward_log(engine, session, record):
 def with_latest_warning(line, record):
     """The status line with the latest warning after it, in every status update: the image editor's header and
     the terminal show it while the render runs, where the Info editor is usually not open. (When the render ends,
-    Blender replaces the line with its own frame/time/memory summary.)"""
+    Blender replaces the line with its own frame/time/memory summary: keep_latest_warning.)"""
     if not record.warnings:
         return line
     latest = record.warnings[-1]
@@ -328,4 +328,14 @@ def render_frame(engine, depsgraph, background=False):
                          names=names, record=record, view=view)
         if engine.test_break():
             break
+    if record.warnings and not background and not preview:
+        keep_latest_warning(engine, record)
     return progress
+
+
+def keep_latest_warning(engine, record):
+    """After the render Blender replaces the status line with its own summary (frame, time, memory), which ends
+    with the render result's message when it has one (what engine.error_set sets, where Cycles' messages show):
+    the latest warning goes there, so it stays in the render window's header after the render."""
+    more = len(record.warnings) - 1
+    engine.error_set(record.warnings[-1] + (f" (+{more} more in the Info editor)" if more else ""))

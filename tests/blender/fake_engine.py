@@ -49,6 +49,7 @@ class FakeEngine:
         self.ended = False
         self.reports = []
         self.stats = []
+        self.error = None   # the render result's message (error_set), shown after the render
 
     def test_break(self):
         self.calls += 1
@@ -86,6 +87,9 @@ class FakeEngine:
 
     def report(self, kind, message):
         self.reports.append((kind, message))
+
+    def error_set(self, message):
+        self.error = message
 
     def image(self):
         """The Combined pixels handed back ((W·H, 4) float32), or None if none were copied."""

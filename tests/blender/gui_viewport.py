@@ -2,12 +2,14 @@
 
 the Rendered view shows the scene and refines (less noise later); the view's own camera puts things where Blender
 draws them (perspective, orthographic, camera view with zoom and pan); a transform-only edit updates the image
-without reading a mesh or building a mesh BVH; an error shows in the viewport header; deleting an object, undo,
-switching the engine and closing the view never crash and leave no viewport thread behind; Material Preview draws
-the geometry (EEVEE); quitting Blender while a viewport renders is clean (gui_run.py checks the exit status).
+without reading a mesh or building a mesh BVH; a colour-management edit does not restart it; an error shows in
+the viewport header; deleting an object, undo, switching the engine, leaving Rendered shading and closing the
+view's area never crash and leave no viewport thread behind; Material Preview draws the geometry (EEVEE);
+quitting Blender while a viewport renders is clean (gui_run.py checks the exit status).
 
 Quick mode (gui_steps.QUICK, in `make test`): the scene and its refinement, the three view modes, the transform-only
-edit, switching the engine and quitting; the error header, delete and undo, and Material Preview (EEVEE's shader
+edit, the colour-management edit, switching the engine and quitting while it renders; the error header, delete
+and undo, Material Preview and closing the area (EEVEE's shader
 compilation under software OpenGL is the slowest step) only in the full run (`make test-gui`)."""
 
 import math
@@ -122,6 +124,28 @@ def steps():
             f"mesh reads {reads} -> {vp.meshes.reads}, BVHs built {built} -> {status['bvh_built']}, "
             f"reused {status['bvh_reused']}")
 
+    # ---- colour management: Blender applies it when drawing, the render goes on ----
+    yield from G.wait_until(lambda: final_image(vp, 8) is not None, 60)
+    updates, original_update = [0], vp.update
+
+    def counted_update(context, depsgraph):
+        updates[0] += 1
+        original_update(context, depsgraph)
+
+    vp.update = counted_update
+    request, exports, samples = vp.session.image_request(), vp.exports, vp.display.meta["samples"]
+    view = scene.view_settings
+    transform = view.view_transform
+    view.exposure, view.gamma, view.view_transform = 0.5, 1.1, 'Standard' if transform != 'Standard' else 'Filmic'
+    yield 2.0
+    G.check("a colour-management edit reaches view_update but does not restart the render",
+            updates[0] >= 1 and vp.session.image_request() == request and vp.exports == exports
+            and vp.display.meta["samples"] >= samples,
+            f"{updates[0]} view_update calls, request {request} -> {vp.session.image_request()}, exports {exports} "
+            f"-> {vp.exports}, samples {samples} -> {vp.display.meta['samples']}")
+    view.exposure, view.gamma, view.view_transform = 0.0, 1.0, transform
+    del vp.update
+
     if G.QUICK:
         yield from quick_end(scene)
         return
@@ -177,10 +201,15 @@ def steps():
     ok = yield from G.wait_until(eevee_shows_the_cube, 180, poll=3.0)
     G.check("Material Preview draws the geometry", ok, f"cube pixel {seen[0]}")
 
-    # ---- quitting while a viewport renders (gui_run.py checks Blender's exit status) ----
+    # ---- closing the Rendered view's area while it renders (quitting while it renders: the quick mode) ----
     space.shading.type = 'RENDERED'
     ok = yield from G.wait_until(lambda: G.viewports() and G.viewports()[0].display.meta is not None, 60)
-    G.check("rendering again before quitting", ok)
+    G.check("rendering again", ok)
+    with bpy.context.temp_override(window=window, screen=window.screen, area=area):
+        bpy.ops.screen.area_close()
+    ok = yield from G.wait_until(lambda: not G.viewports() and G.viewport_threads() == 0, 30)
+    G.check("closing the Rendered view's area stops its viewport and thread", ok,
+            f"{len(G.viewports())} viewports, {G.viewport_threads()} threads")
 
 
 def quick_end(scene):

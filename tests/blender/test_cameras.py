@@ -128,3 +128,41 @@ def test_world_only_scene_renders_the_sky(tmp_path):
     scene.world = world
     pixels = ts.render(scene, 'CANDELA', 2, str(tmp_path / "sky.exr"))
     assert np.allclose(pixels[..., :3], (0.3, 0.6, 1.2), rtol=1e-5)
+
+
+def test_every_integrator_renders_a_panorama_like_path_or_refuses_it_by_name():
+    """Issue 20: a panoramic camera works in every integrator that connects to the camera, or is refused there by
+    name, never rendered as another projection. The scene's background is exactly black (black world, no lights,
+    no bounces), so any light outside PATH's cubes (away from their partly covered edge pixels) means another
+    projection, whatever the integrator's noise; and the cubes behind and above the camera must show."""
+    from fake_engine import FakeEngine
+    from candela import render_loop, schema
+    from candela.export import ExportError
+    scene = panorama_scene('EQUIRECTANGULAR', 64, 32)
+    scene.candela.samples, scene.candela.max_bounces = 8, 0
+
+    def render(integrator):
+        scene.candela.integrator = integrator
+        engine = FakeEngine()
+        render_loop.render_frame(engine, bpy.context.evaluated_depsgraph_get(), background=True)
+        return engine.image().reshape(32, 64, 4)
+
+    path = bright(render("PATH"))
+    allowed = path | boundary(path)
+    assert path[:, :3].any() and path[:, -3:].any() and path[-6:, :].any()   # behind (both edges) and above
+    refused, rendered = [], []
+    for name, _, label in schema.integrators():
+        if name == "PATH":
+            continue
+        try:
+            lit = render(name)[..., :3].max(axis=2) > 0.0
+        except ExportError as e:
+            message = str(e)
+            assert f"integrator {name}" in message and "panoramic camera (Equirectangular)" in message, message
+            refused.append(name)
+            continue
+        stray = lit & ~allowed
+        assert not stray.any(), f"{label}: {int(stray.sum())} lit pixels where PATH's panorama shows nothing"
+        assert lit[:, :3].any() and lit[:, -3:].any() and lit[-6:, :].any(), f"{label}: not the panorama"
+        rendered.append(name)
+    assert {"LIGHT", "BDPT"} <= set(refused), (refused, rendered)

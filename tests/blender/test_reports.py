@@ -1,5 +1,5 @@
 """What a render tells the user: settings Candela ignores (once per render, by name), the latest warning in the
-status line after the render, Candela's own memory figure; and renders and previews keep their reports apart."""
+status line while the render runs and in the render window's header after it, Candela's own memory figure; and renders and previews keep their reports apart."""
 
 import bpy
 
@@ -88,6 +88,26 @@ def test_latest_warning_stays_in_the_status_line_and_memory_is_candelas():
     final = engine.stats[-1]
     assert "Sample 1/1" in final and "Mist pass" in final and "(+1 more in the Info editor)" in final
     assert engine.memory and engine.memory[-1][0] > 0.0   # scene + film, in MB
+
+
+def test_latest_warning_stays_in_the_header_after_the_render():
+    """Blender's summary line after a render ends with the render result's message (error_set): the latest
+    warning; a render without warnings, a preview and a background render (no window) set none."""
+    from candela import render_loop
+    scene = scenes.tiny_scene(width=16, height=12, samples=1)
+    clean = RecordingEngine()
+    render_loop.render_frame(clean, bpy.context.evaluated_depsgraph_get(), background=False)
+    assert clean.error is None
+    scene.render.use_motion_blur = True
+    bpy.context.view_layer.use_pass_mist = True
+    engine = RecordingEngine()
+    render_loop.render_frame(engine, bpy.context.evaluated_depsgraph_get(), background=False)
+    latest = warnings_of(engine)[-1]
+    assert engine.error == latest + " (+1 more in the Info editor)", (engine.error, warnings_of(engine))
+    assert render().error is None   # background=True
+    preview = PreviewEngine()
+    render_loop.render_frame(preview, bpy.context.evaluated_depsgraph_get(), background=False)
+    assert preview.error is None
 
 
 def test_previews_are_cheap_and_never_touch_the_final_render_record():

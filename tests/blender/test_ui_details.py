@@ -1,5 +1,5 @@
 """The UI details issue 20 found in the GUI: spot and area shape in Candela's light panel, Simplify after Sampling,
-previews, one Shift+A list generated from the exporter's tables, the noise stop's own name, teaching options
+the viewport's own sample limit, previews, one Shift+A list generated from the exporter's tables, the noise stop's own name, teaching options
 marked as such and the sampling presets."""
 
 from types import SimpleNamespace
@@ -77,6 +77,22 @@ def test_simplify_comes_after_sampling():
         assert "CANDELA" not in getattr(bpy.types, name).COMPAT_ENGINES, name
     body = drawn(bpy.types.CANDELA_RENDER_PT_simplify, SimpleNamespace(scene=bpy.context.scene))
     assert "simplify_subdivision" in body and "simplify_subdivision_render" in body
+
+
+def test_viewport_samples_are_their_own_setting_in_the_sampling_panel():
+    """The Rendered viewport's sample limit is its own value (as Cycles' Viewport samples), drawn in a Viewport
+    sub-panel of Sampling with the start resolution and Blender's pixel size, and the viewport reads it (not the
+    final render's samples)."""
+    scenes.ensure_addon()
+    from candela.viewport.render import viewport_settings
+    panel = bpy.types.CANDELA_RENDER_PT_sampling_viewport
+    assert panel.bl_parent_id == "CANDELA_RENDER_PT_sampling"
+    scene = scenes.tiny_scene(samples=7)
+    assert drawn(panel, SimpleNamespace(scene=scene)) == ["viewport_samples", "viewport_start_resolution",
+                                                          "preview_pixel_size"]
+    scene.candela.viewport_samples = 33
+    assert viewport_settings(scene, bpy.context.view_layer)[0]["samples"] == 33
+    assert scene.candela.samples == 7
 
 
 def test_previews_and_material_preview_shading():
