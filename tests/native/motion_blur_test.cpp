@@ -16,6 +16,7 @@
 #include "integrators/integrator.h"
 #include "scene/scene.h"
 #include "scene/shutter_time.h"
+#include "session/session.h"
 #include "test_helpers.h"
 
 namespace candela::test {
@@ -299,6 +300,31 @@ TEST(MotionBlur, IntegratorsThatDoNotRenderItSaySo) {
     const PreparedScene scene(moving_box(-1.f, 1.f, true), basic_params(4, 4, 1, 0));
     EXPECT_NE(unhonoured_features_note("SPPM", 0u, scene.scene()).find("motion blur"), std::string::npos);
     EXPECT_TRUE(unhonoured_features_note("PATH", k_feature_motion_blur, scene.scene()).empty());
+}
+
+TEST(MotionBlur, AutoNotesWhatItsChoiceDoesNotRender) {
+    // AUTO renders with the integrator it chose: the note (if any) is that integrator's, logged after the choice,
+    // never one for AUTO itself; a choice that renders motion blur logs no motion-blur note.
+    Params p = motion_params("AUTO", 2);
+    Session s(moving_box(-1.f, 1.f, true), p);
+    s.start();
+    s.join();
+    ASSERT_FALSE(s.error().has_value()) << *s.error();
+    const std::vector<std::string> log = s.take_log();
+    std::string chosen;
+    for (const std::string& l : log)
+        if (l.rfind("Auto: chose ", 0) == 0) chosen = l.substr(12, l.find(' ', 12) - 12);
+    ASSERT_FALSE(chosen.empty());
+    const bool blurs = chosen == "PATH" || chosen == "LIGHT" || chosen == "BDPT";
+    int notes = 0;
+    for (const std::string& l : log) {
+        EXPECT_NE(l.rfind("AUTO: ", 0), 0u) << l;
+        if (l.find("motion blur is not rendered") != std::string::npos) {
+            ++notes;
+            EXPECT_EQ(l.rfind(chosen + ": ", 0), 0u) << l;
+        }
+    }
+    EXPECT_EQ(notes, blurs ? 0 : 1) << "AUTO chose " << chosen;
 }
 
 }  // namespace

@@ -51,11 +51,16 @@ public:
         const std::string skipped = scene_skips_line(scene_skips(choice.integrator, scene));
         if (!skipped.empty()) ctx.log(skipped);
         std::unique_ptr<Integrator> chosen = find_integrator(choice.integrator).create(m_params);
+        const std::string note = unhonoured_features_note(choice.integrator, chosen->honoured_features(), scene);
+        if (!note.empty()) ctx.log(note);
         ctx.counters.work_total = chosen->budget().total;
         chosen->render(scene, film, ctx);
     }
 
     WorkBudget budget() const override { return m_probe->budget(); }
+    /// What AUTO's choice does not honour is logged after the choice, under the chosen integrator's name; the
+    /// session must not log it before, for AUTO itself.
+    uint32_t honoured_features() const override { return ~0u; }
 
 private:
     Params m_params;
