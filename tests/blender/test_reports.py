@@ -98,7 +98,8 @@ def test_latest_warning_stays_in_the_header_after_the_render():
     clean = RecordingEngine()
     render_loop.render_frame(clean, bpy.context.evaluated_depsgraph_get(), background=False)
     assert clean.error is None
-    scene.render.use_motion_blur = True
+    scene.render.use_motion_blur = True           # motion blur renders; its rolling shutter is reported
+    scene.cycles.rolling_shutter_type = 'TOP'
     bpy.context.view_layer.use_pass_mist = True
     engine = RecordingEngine()
     render_loop.render_frame(engine, bpy.context.evaluated_depsgraph_get(), background=False)
