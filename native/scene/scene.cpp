@@ -93,15 +93,13 @@ void Scene::set_camera(const Params& params, const Affine& camera_to_world) {
     m_camera = camera;
 }
 
-const Scene::Placement& Scene::placement_now(uint32_t id, Placement& scratch) const {
-    const Placement& pl = m_placements[id];
-    if (pl.motion < 0) return pl;
-    scratch = pl;
-    scratch.object_to_world = m_motions[size_t(pl.motion)].at(shutter_time());
-    scratch.world_to_object = scratch.object_to_world.inverse();
-    scratch.normal_to_world = scratch.object_to_world.normal_matrix();
-    scratch.mirrored = scratch.object_to_world.determinant3() < 0.f;
-    return scratch;
+const Scene::Placement& Scene::moved_placement(const Placement& pl, std::optional<Placement>& scratch) const {
+    Placement& moved = scratch.emplace(pl);
+    moved.object_to_world = m_motions[size_t(pl.motion)].at(shutter_time());
+    moved.world_to_object = moved.object_to_world.inverse();
+    moved.normal_to_world = moved.object_to_world.normal_matrix();
+    moved.mirrored = moved.object_to_world.determinant3() < 0.f;
+    return moved;
 }
 
 Scene::~Scene() = default;

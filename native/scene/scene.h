@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "bsdf/material.h"
@@ -24,6 +25,7 @@
 #include "scene/embree_device.h"
 #include "scene/ray_visibility.h"
 #include "scene/shading_point.h"
+#include "scene/shutter_time.h"
 #include "scene/surface_hit.h"
 
 namespace candela {
@@ -195,8 +197,15 @@ private:
     friend struct Builder;
     void build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache);
     /// Placement `id` at the thread's shutter time (scene/shutter_time.h): the stored one for an object that does
-    /// not move, else a copy in `scratch` with its transforms interpolated.
-    const Placement& placement_now(uint32_t id, Placement& scratch) const;
+    /// not move, else a copy made in `scratch` with its transforms interpolated (an empty optional costs nothing
+    /// on the hot path of scenes without motion; a Placement would be constructed on every hit).
+    inline const Placement& placement_now(uint32_t id, std::optional<Placement>& scratch) const;  // scene_parts.h
+    /// placement_now's copy of a moving placement `pl`, its transforms at the thread's shutter time.
+    __attribute__((cold)) const Placement& moved_placement(const Placement& pl,
+                                                           std::optional<Placement>& scratch) const;
+    /// Embree's ray time: the thread's shutter time where an instance moves, else the shutter's middle without
+    /// reading the thread-local time (a TLS lookup per ray in the shared module).
+    float ray_time() const { return m_motions.empty() ? k_shutter_middle : shutter_time(); }
     /// The SurfaceHit of Embree's hit (geometry, triangle, instance ids, barycentrics, unnormalised Ng) at
     /// distance t along `ray`.
     void decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t inst, float u, float v,

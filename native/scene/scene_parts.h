@@ -43,4 +43,9 @@ struct Scene::Placement {
                                     // its transforms above are then those at the shutter's middle
 };
 
+inline const Scene::Placement& Scene::placement_now(uint32_t id, std::optional<Placement>& scratch) const {
+    const Placement& pl = m_placements[id];
+    return __builtin_expect(pl.motion < 0, 1) ? pl : moved_placement(pl, scratch);
+}
+
 }  // namespace candela

@@ -133,7 +133,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit, const PrimitiveRef& skip)
     rh.ray.dir_z = ray.d.z;
     rh.ray.tnear = ray.tmin;
     rh.ray.tfar = ray.tmax;
-    rh.ray.time = shutter_time();
+    rh.ray.time = ray_time();
     rh.ray.mask = 0xFFFFFFFFu;
     rh.ray.id = k_query_tag;
     rh.ray.flags = 0;
@@ -155,7 +155,7 @@ void Scene::decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t in
                        const Vec3& ng_embree, float t, SurfaceHit* hit) const {
     const bool via_instance = inst != RTC_INVALID_GEOMETRY_ID;
     const uint32_t object = via_instance ? inst : geom;
-    Placement moved;
+    std::optional<Placement> moved;
     const Placement& pl = placement_now(object, moved);  // a moving object's at the ray's (thread's) shutter time
     const MeshShading& s = m_shading[pl.mesh];
     hit->primitive = {geom, prim, inst};
@@ -198,7 +198,7 @@ void Scene::intersect_packet(const Ray* rays, int n, TracedHit* hits) const {
         rh.ray.dir_z[j] = ray.d.z;
         rh.ray.tnear[j] = ray.tmin;
         rh.ray.tfar[j] = ray.tmax;
-        rh.ray.time[j] = shutter_time();
+        rh.ray.time[j] = ray_time();
         rh.ray.mask[j] = 0xFFFFFFFFu;
         rh.ray.id[j] = k_query_tag;
         rh.ray.flags[j] = 0;
@@ -236,7 +236,7 @@ bool Scene::occluded(const Vec3& o, const Vec3& d, float tmax, RayType type, con
     r.dir_z = d.z;
     r.tnear = 0.f;
     r.tfar = tmax;
-    r.time = shutter_time();
+    r.time = ray_time();
     r.mask = 0xFFFFFFFFu;
     r.id = k_query_tag;
     r.flags = 0;

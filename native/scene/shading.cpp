@@ -76,7 +76,8 @@ ShadingPoint Scene::shade(const SurfaceHit& hit, const Vec3& wo, const LightPath
 
     const MaterialInputs& mi = m_material_inputs[size_t(material.inputs)];
     const PrimitiveRef& prim = hit.primitive;
-    Placement moved;  // a moving object's transforms at the path's shutter time (object space, Object Info)
+    std::optional<Placement>
+        moved;  // a moving object's transforms at the path's shutter time (object space, Object Info)
     const ShadingInputs in =
         shading_inputs(hit, wo, placement_now(prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom, moved),
                        m_shaders->uses_differentials(mi.program), path);
@@ -98,7 +99,7 @@ float Scene::varying_holdout(const SurfaceHit& hit, const Vec3& wo) const {
     const MaterialInputs& mi = m_material_inputs[size_t(m_materials[hit.material].inputs)];
     const PrimitiveRef& prim = hit.primitive;
     ShaderRegisters regs(m_shaders->program_size(mi.program));
-    Placement moved;
+    std::optional<Placement> moved;
     m_shaders->evaluate(
         mi.program,
         shading_inputs(hit, wo, placement_now(prim.inst != PrimitiveRef::k_none ? prim.inst : prim.geom, moved)),

@@ -49,7 +49,7 @@ bool Scene::terminator_lifts(const SurfaceHit& hit) const {
 
 Vec3 Scene::terminator_point(const SurfaceHit& hit, const Vec3& ns_side, const Vec3& ng_side, const Vec3& wl) const {
     if (!m_any_terminator_offset) return hit.p;
-    Placement moved;
+    std::optional<Placement> moved;
     const Placement& pl = placement_now(hit.object, moved);
     const float cutoff = pl.terminator_offset;
     const MeshShading& s = m_shading[pl.mesh];
