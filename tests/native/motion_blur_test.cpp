@@ -7,10 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "agreement.h"
 #include "core/error.h"
 #include "core/motion_transform.h"
 #include "integrators/integrator.h"
@@ -219,6 +221,27 @@ TEST(MotionBlur, PathGeneratorsAgreeWithPathOnAMovingBox) {
         }
 }
 
+TEST(MotionBlur, MltAndMmltAgreeWithPathOnAMovingBox) {
+    // The shutter time is a coordinate of the chain's state. A Metropolis image's error is correlated across pixels,
+    // so (as tests/native/mlt_test.cpp does) 8 independent runs per integrator are compared by their spread: mean
+    // within 4.5 and 4×4 blocks within 6.5 standard errors (t with 14 dof: false alarms 5e-4 and 1.5e-5 per
+    // comparison and block).
+    const SceneArrays scene = moving_box(-1.f, 1.f, true, true, 0.5f);
+    Params path = motion_params("PATH", 64);
+    path.set("max_bounces", int64_t(2));
+    for (const char* name : {"MLT", "MMLT"}) {
+        Params p = motion_params(name, 256);
+        p.set("max_bounces", int64_t(2));
+        p.set("mlt_bootstrap", int64_t(4000));
+        p.set("mlt_chains", int64_t(32));
+        const Agreement g = compare_seed_sets(render_seeds(scene, p, 8), render_seeds(scene, path, 8), 4);
+        std::printf("%s, moving box: means %.5f vs %.5f, z %.2f, worst block z %.2f of %d\n", name, g.mean_a, g.mean_b,
+                    g.mean_z, g.worst_block_z, g.blocks);
+        EXPECT_LT(std::fabs(g.mean_z), 4.5) << name;
+        EXPECT_LT(std::fabs(g.worst_block_z), 6.5) << name << ": block " << g.worst_block;
+    }
+}
+
 TEST(MotionBlur, SurfacePointsAreWhereRaysFindThemAtTheirTime) {
     // Scene::surface_point (the surface sampler's points) of a moving box under a ShutterScope is the point a ray
     // traced at that time hits: the box's front face centre moves from x = −1 to x = 1.
@@ -248,7 +271,8 @@ TEST(MotionBlur, SurfacePointsAreWhereRaysFindThemAtTheirTime) {
 }
 
 TEST(MotionBlur, ImagesDoNotDependOnTheThreadCount) {
-    for (const char* name : {"PATH", "LIGHT", "BDPT", "SURFACE_SAMPLING", "SOURCE_SHOOTING", "RECEIVER_GATHERING"}) {
+    for (const char* name :
+         {"PATH", "LIGHT", "BDPT", "SURFACE_SAMPLING", "SOURCE_SHOOTING", "RECEIVER_GATHERING", "MLT", "MMLT"}) {
         // A grey box and wall with two bounces: every path generator's indirect estimate runs.
         Params p1 = motion_params(name, 8, 1), p2 = motion_params(name, 8, 2);
         p1.set("max_bounces", int64_t(2)), p2.set("max_bounces", int64_t(2));
@@ -350,7 +374,7 @@ TEST(MotionBlur, MovingEmittersStayStillAndSaySo) {
 TEST(MotionBlur, IntegratorsThatDoNotRenderItSaySo) {
     const PreparedScene scene(moving_box(-1.f, 1.f, true), basic_params(4, 4, 1, 0));
     EXPECT_NE(unhonoured_features_note("SPPM", 0u, scene.scene()).find("motion blur"), std::string::npos);
-    for (const char* name : {"SURFACE_SAMPLING", "SOURCE_SHOOTING", "RECEIVER_GATHERING"})
+    for (const char* name : {"SURFACE_SAMPLING", "SOURCE_SHOOTING", "RECEIVER_GATHERING", "MLT", "MMLT"})
         EXPECT_TRUE(
             unhonoured_features_note(name, make_integrator(motion_params(name, 1))->honoured_features(), scene.scene())
                 .find("motion blur") == std::string::npos)
@@ -372,7 +396,8 @@ TEST(MotionBlur, AutoNotesWhatItsChoiceDoesNotRender) {
         if (l.rfind("Auto: chose ", 0) == 0) chosen = l.substr(12, l.find(' ', 12) - 12);
     ASSERT_FALSE(chosen.empty());
     const bool blurs = chosen == "PATH" || chosen == "LIGHT" || chosen == "BDPT" || chosen == "SURFACE_SAMPLING" ||
-                       chosen == "SOURCE_SHOOTING" || chosen == "RECEIVER_GATHERING";
+                       chosen == "SOURCE_SHOOTING" || chosen == "RECEIVER_GATHERING" || chosen == "MLT" ||
+                       chosen == "MMLT";
     int notes = 0;
     for (const std::string& l : log) {
         EXPECT_NE(l.rfind("AUTO: ", 0), 0u) << l;
