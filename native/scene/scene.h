@@ -180,9 +180,16 @@ public:
     // Geometry for samplers of surface points (scene/scene_geometry.cpp). Top-level objects are numbered
     // 0 .. object_count() − 1 (SurfaceHit::object), one per instance with faces.
     uint32_t object_count() const;
+    /// The object's triangles; an instance's object_to_world is the one at the thread's shutter time (a moving
+    /// object's transform there, scene/shutter_time.h).
     ObjectTriangles object_triangles(uint32_t object) const;
+    /// A top-level object's object → camera-world transform at the thread's shutter time.
+    Affine object_to_world(uint32_t object) const;
+    /// Whether a top-level object moves over the shutter (motion blur).
+    bool object_moves(uint32_t object) const;
     /// The SurfaceHit at barycentrics (b1, b2) of triangle `prim` of `object`, filled as intersect() fills a hit
-    /// there (position, normals, material, light, primitive, object), with t = 0; shade() works on it.
+    /// there (position, normals, material, light, primitive, object), with t = 0; shade() works on it. A moving
+    /// object's point is where it is at the thread's shutter time, as a ray traced then would find it.
     SurfaceHit surface_point(uint32_t object, uint32_t prim, float b1, float b2) const;
     /// ObjectFlag bits of a top-level object: the ray types it is visible to, holdout.
     uint8_t object_flags(uint32_t object) const { return m_object_flags[object]; }

@@ -25,9 +25,19 @@ ObjectTriangles Scene::object_triangles(uint32_t object) const {
     t.triangle_count = uint32_t(m_shading[pl.mesh].material.size());
     t.instanced = pl.instanced;
     t.mesh = pl.mesh;
-    if (pl.instanced) t.object_to_world = pl.object_to_world;
+    if (pl.instanced) t.object_to_world = object_to_world(object);
     t.flags = m_object_flags[object];
     return t;
+}
+
+Affine Scene::object_to_world(uint32_t object) const {
+    if (object >= m_placements.size()) throw InternalError("object_to_world: no object " + std::to_string(object));
+    Placement scratch;
+    return placement_now(object, scratch).object_to_world;
+}
+
+bool Scene::object_moves(uint32_t object) const {
+    return object < m_placements.size() && m_placements[object].motion >= 0;
 }
 
 SurfaceHit Scene::surface_point(uint32_t object, uint32_t prim, float b1, float b2) const {

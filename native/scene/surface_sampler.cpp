@@ -43,6 +43,7 @@ SurfaceSampler::SurfaceSampler(const Scene& scene, const CancelToken* cancel) : 
     for (uint32_t i = 0; i < n; ++i) {
         Object& o = m_objects[i];
         o.triangles = scene.object_triangles(i);
+        o.moves = scene.object_moves(i);
         const ObjectTriangles& t = o.triangles;
         if ((t.flags & k_vertex_rays) == 0) continue;  // on no path: left out (weight 0, no table)
         if (t.instanced && t.mesh < mesh_table.size() && mesh_table[t.mesh] >= 0) {
@@ -98,9 +99,11 @@ SurfaceSampler::SurfaceSampler(const Scene& scene, const CancelToken* cancel) : 
 float SurfaceSampler::world_area(const Object& o, uint32_t prim) const {
     const ObjectTriangles& t = o.triangles;
     if (!t.instanced) return 0.5f * length(doubled_normal(t, prim));
-    const Vec3 v0 = t.object_to_world.point(vertex(t, prim, 0));
-    return 0.5f * length(cross(t.object_to_world.point(vertex(t, prim, 1)) - v0,
-                               t.object_to_world.point(vertex(t, prim, 2)) - v0));
+    // At the thread's shutter time (a moving instance's transform then: sample() places the point there too), so
+    // the density stays exact over the shutter; P(object) keeps the weights built at the shutter's middle.
+    const Affine m = o.moves ? m_scene.object_to_world(uint32_t(&o - m_objects.data())) : t.object_to_world;
+    const Vec3 v0 = m.point(vertex(t, prim, 0));
+    return 0.5f * length(cross(m.point(vertex(t, prim, 1)) - v0, m.point(vertex(t, prim, 2)) - v0));
 }
 
 float SurfaceSampler::pdf_of(uint32_t object, uint32_t prim) const {

@@ -64,6 +64,7 @@ private:
     struct Object {
         ObjectTriangles triangles;
         uint32_t table = 0;
+        bool moves = false;  // a moving instance (motion blur): its transform is read at the thread's shutter time
     };
     /// World-space area of triangle `prim` of object `object`.
     float world_area(const Object& o, uint32_t prim) const;

@@ -32,9 +32,12 @@ public:
         const LightSampler light_sampler = make_light_sampler(m_settings.light_selection, scene.lights());
         const EmitterSet emitters(scene.lights(), scene.bounds());
         const GeneratorTracer tracer(scene, m_settings, light_sampler, emitters, surfaces ? &*surfaces : nullptr);
-        render_camera_progressive(scene, film, ctx, m_settings.pixel, tracer);
+        // Motion blur: one shutter time per camera sample, seen by all its sub-paths (the light path of source
+        // shooting, the surface points of surface sampling: SurfaceSampler places them at that time too).
+        render_camera_progressive(scene, film, ctx, m_settings.pixel, tracer, /*motion_blur=*/true);
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
+    uint32_t honoured_features() const override { return k_feature_motion_blur; }
 
 private:
     GeneratorSettings m_settings;

@@ -182,6 +182,8 @@ public:
         ctx.log(line);
     }
     WorkBudget budget() const override { return {m_settings.bdpt.pixel.samples, "mutation"}; }
+    // Motion blur: the shutter time is a coordinate of the chain's state (PathSpace::shutter_dim).
+    uint32_t honoured_features() const override { return k_feature_motion_blur; }
 
 private:
     MltSettings m_settings;

@@ -1,11 +1,17 @@
 #include "integrators/mlt/path_space.h"
 
 #include <algorithm>
+#include <optional>
+
+#include "scene/shutter_time.h"
 
 namespace candela {
 
 PathSpace::PathSpace(const Scene& scene, const BdptSettings& settings, const EmitterSet& emitters)
-    : m_tracer(scene, settings, emitters), m_camera(scene.camera()), m_margin(m_tracer.context().camera_margin()) {
+    : m_tracer(scene, settings, emitters),
+      m_camera(scene.camera()),
+      m_margin(m_tracer.context().camera_margin()),
+      m_motion(scene.has_motion()) {
     const double w = m_camera.full_width(), h = m_camera.full_height();
     m_frame_area = w * h;
     m_area = (w + 2.0 * m_margin) * (h + 2.0 * m_margin);
@@ -17,8 +23,14 @@ uint32_t PathSpace::strategy_dim() const {
     return dimension_index(Dim::LightSelect, c.light_dim_bounce() + c.max_light() + 1);
 }
 
+uint32_t PathSpace::shutter_dim() const { return strategy_dim() + 1; }
+
 void PathSpace::evaluate(PrimarySampleSampler& u, int depth, PathStats& stats, MltSample& out) const {
     out.clear();
+    // Motion blur: the shutter time is one more coordinate of the state (read only when the scene moves, so a
+    // still scene's chains draw exactly the coordinates they did), seen by the whole bidirectional path.
+    std::optional<ShutterScope> scope;
+    if (m_motion) scope.emplace(u.sample_1d(shutter_dim()));
     const Vec2 uf = u.sample_2d(dimension_index(Dim::Filter));
     const float w = float(m_camera.full_width()), h = float(m_camera.full_height());
     const Vec2 raster{-m_margin + uf.x * (w + 2.f * m_margin), -m_margin + uf.y * (h + 2.f * m_margin)};

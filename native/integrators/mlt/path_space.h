@@ -13,6 +13,10 @@
 // coordinate strategy_dim() chooses s uniformly among the k + 2 strategies of that depth (k = 0: (0, 2) only);
 // the path is that strategy's alone, MIS-weighted and multiplied by the number of strategies, so that summed over
 // depths its expectation is the whole bidirectional sample's.
+//
+// Motion blur: in a moving scene u also has a shutter time τ (coordinate shutter_dim(), uniform over [0, 1]); the
+// state's path, all its strategies and splats, sees the scene at τ. The integrand is then over the path space ×
+// the shutter, and the image its time average.
 #pragma once
 
 #include <vector>
@@ -45,11 +49,16 @@ public:
     int max_depth() const { return m_tracer.context().settings.max_bounces + 1; }
     /// The primary coordinate of MMLT's strategy choice: past every coordinate the subpaths read.
     uint32_t strategy_dim() const;
+    /// The primary coordinate of the shutter time (motion blur, scene/shutter_time.h): uniform over the shutter,
+    /// moved by small steps like every coordinate (wrapping around, a symmetric proposal on the circle), fresh at
+    /// large steps; past the strategy choice.
+    uint32_t shutter_dim() const;
 
 private:
     BdptTracer m_tracer;
     const Camera& m_camera;
     float m_margin;
+    bool m_motion;  // the scene moves: the state carries a shutter time (shutter_dim)
     double m_area, m_frame_area;
 };
 

@@ -88,6 +88,8 @@ public:
         render_sppm(m_settings, scene, film, ctx);
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "iteration"}; }
+    // Motion blur: one shutter time per iteration, shared by its camera pass and photons (sppm.cpp).
+    uint32_t honoured_features() const override { return k_feature_motion_blur; }
 
 private:
     SppmSettings m_settings;

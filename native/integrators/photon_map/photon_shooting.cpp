@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/parallel_ordered.h"
 #include "core/rng.h"
+#include "scene/shutter_time.h"
 
 namespace candela {
 
@@ -20,6 +21,8 @@ PhotonShot shoot_photons(const PhotonTracer& tracer, const EmitterSet& emitters,
     const PhotonPaths kind = store == PhotonStore::Caustic ? PhotonPaths::CausticOnly : PhotonPaths::All;
     const size_t batches = size_t((paths + k_photon_batch - 1) / k_photon_batch);
     const uint64_t key = hash_combine(seed, 0x70686f746f6eULL + stream);
+    // Motion blur: every photon is traced at the caller's shutter time (its pass's, or the shutter's middle).
+    const float time = shutter_time();
     ctx.counters.stage.begin(stage_name, paths);
     int64_t done = 0;
     struct Batch {
@@ -31,6 +34,7 @@ PhotonShot shoot_photons(const PhotonTracer& tracer, const EmitterSet& emitters,
         [&](size_t b) {
             Batch out;
             if (ctx.cancel.cancelled()) return out;
+            const ShutterScope scope(time);
             SobolSampler sampler(key, 1);
             const int64_t begin = int64_t(b) * k_photon_batch, end = std::min(paths, begin + k_photon_batch);
             for (int64_t i = begin; i < end; ++i) {

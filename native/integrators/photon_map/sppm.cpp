@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/rng.h"
 #include "integrators/camera_hit.h"
 #include "integrators/common/direct_light.h"
 #include "integrators/common/light_path.h"
@@ -15,6 +16,7 @@
 #include "integrators/photon_map/radiance_estimate.h"
 #include "integrators/progressive_driver.h"
 #include "lights/light_sampler.h"
+#include "scene/shutter_time.h"
 
 namespace candela {
 
@@ -177,10 +179,16 @@ private:
     void iteration(uint32_t it) {
         const Film& film = m_film;
         const auto& tiles = film.tiles();
+        // Motion blur: the iteration's one shutter time (a hash of the seed and iteration, no sampler dimension),
+        // seen by its camera pass, its photons and its statistics, so each iteration's visible points and photons
+        // meet at one time and the progressive average over iterations is the time average.
+        const float time =
+            m_scene.has_motion() ? shutter_time_of(hash_combine(m_s.pixel.seed, 0x7370706dULL + it)) : k_shutter_middle;
         // 1. Visible points and direct light.
         parallel_for(
             m_ctx.threads, tiles.size(),
             [&](size_t t) {
+                const ShutterScope scope(time);
                 const Tile& tile = tiles[t];
                 Sampler sampler = m_s.pixel.replicate_sampler(noise_replicate_of(it));
                 PathStats stats;
@@ -206,6 +214,7 @@ private:
         // 2. Photons.
         PhotonMap map;
         try {
+            const ShutterScope scope(time);  // shoot_photons traces at the caller's time
             const PhotonTracer tracer(m_scene, m_emitters, m_photon_rules);
             map = build_photon_map(shoot_photons(tracer, m_emitters, PhotonStore::Indirect, m_photons, m_s.pixel.seed,
                                                  2 + it, m_ctx, "Tracing photons"),
@@ -221,6 +230,7 @@ private:
         const float alpha = m_s.alpha;
         const LobeSubset estimated{m_s.alpha_threshold(), false};
         parallel_for(m_ctx.threads, tiles.size(), [&](size_t t) {
+            const ShutterScope scope(time);  // the visible points' shading at their iteration's time
             const Tile& tile = tiles[t];
             std::vector<PhotonNeighbor> found;
             std::vector<PixelAccum> out(size_t(tile.width()) * tile.height());
