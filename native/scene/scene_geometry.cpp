@@ -32,7 +32,7 @@ ObjectTriangles Scene::object_triangles(uint32_t object) const {
 
 Affine Scene::object_to_world(uint32_t object) const {
     if (object >= m_placements.size()) throw InternalError("object_to_world: no object " + std::to_string(object));
-    Placement scratch;
+    std::optional<Placement> scratch;
     return placement_now(object, scratch).object_to_world;
 }
 
