@@ -1,15 +1,17 @@
 // Motion blur (docs/light_paths.md, "Motion blur"): the transform interpolation, the scene's moving instances and
-// camera, and the integrators that render it (PATH, LIGHT, BDPT, the path generators). The image of a moving scene is the time average
-// of its still images over the shutter: a render with motion is compared, block by block, with the mean of still
-// renders at evenly spaced times (the midpoint rule over the shutter), within statistical tolerances from both
-// renders' noise estimates.
+// camera, and the integrators that render it (all of them). The image of a moving scene is the time average of its
+// still images over the shutter: a render with motion is compared, block by block, with the mean of still renders
+// at evenly spaced times (the midpoint rule over the shutter), within statistical tolerances from both renders'
+// noise estimates; the other integrators are compared with PATH on the moving scene.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "agreement.h"
@@ -190,16 +192,51 @@ TEST(MotionBlur, MovingBoxIsTheTimeAverageOfStillBoxes) {
     EXPECT_GT(largest, 0.2);
 }
 
+/// The grey box before the grey emitting wall that the integrator comparisons below use, moving 2 units over the
+/// shutter, and the params of `integrator` there: two bounces (motion_params has none), so paths wall → box → wall
+/// (the indirect light between them) exist and every integrator's indirect estimate runs.
+SceneArrays grey_moving_box() { return moving_box(-1.f, 1.f, true, true, 0.5f); }
+Params grey_box_params(const std::string& integrator, int samples, int threads = 2) {
+    Params p = motion_params(integrator, samples, threads);
+    p.set("max_bounces", int64_t(2));
+    return p;
+}
+
+/// The comparison by independent runs (agreement.h) of integrators whose error is correlated across pixels
+/// (splats, shared light paths, Markov chains, photon maps and caches): `runs` against PATH's, each set of 8 seeds,
+/// the image mean within 4.5 and every 4×4 block within 6.5 standard errors from the runs' spread (t with 14
+/// degrees of freedom: false alarms 5e-4 per mean and 1.5e-5 per block, 1e-3 for the 64 blocks).
+Agreement expect_runs_agree(const std::vector<RenderResult>& runs, const std::vector<RenderResult>& path,
+                            const std::string& what) {
+    const Agreement g = compare_seed_sets(runs, path, 4);
+    std::printf("%s, moving box: means %.5f vs %.5f, z %.2f, worst block z %.2f of %d\n", what.c_str(), g.mean_a,
+                g.mean_b, g.mean_z, g.worst_block_z, g.blocks);
+    EXPECT_LT(std::fabs(g.mean_z), 4.5) << what;
+    EXPECT_LT(std::fabs(g.worst_block_z), 6.5) << what << ": block " << g.worst_block;
+    return g;
+}
+
+/// That the comparison can fail: `runs` of the still box at the shutter's middle — what an integrator that builds
+/// its cache (or traces everything) at one time renders — are told apart from PATH's moving box.
+void expect_one_time_fails(const std::vector<RenderResult>& runs, const std::vector<RenderResult>& path,
+                           const std::string& what) {
+    const Agreement g = compare_seed_sets(runs, path, 4);
+    std::printf("%s at one time (the shutter's middle): worst block z %.1f of %d\n", what.c_str(), g.worst_block_z,
+                g.blocks);
+    EXPECT_GT(std::fabs(g.worst_block_z), 6.5) << what;
+}
+
 TEST(MotionBlur, LightAndBdptAgreeWithPathOnAMovingBox) {
-    // An emitting wall behind the box, so light paths see what camera paths see; one shutter time per path (both
-    // BDPT subpaths share it).
-    const int b = 4;
-    const Blocks path = blocks_of(render(moving_box(-1.f, 1.f, true, true), motion_params("PATH", 256)), b);
-    ASSERT_GT(*std::max_element(path.mean.begin(), path.mean.end()), 0.9);  // the wall is seen
-    for (const char* name : {"LIGHT", "BDPT"}) {
-        const Blocks other = blocks_of(render(moving_box(-1.f, 1.f, true, true), motion_params(name, 256)), b);
-        expect_blocks_agree(other, path, 0.0, name);
-    }
+    // The grey box before the grey emitting wall with two bounces: light paths (LIGHT's, BDPT's light subpaths)
+    // leave the wall, light the box and come back, each at its path's (sample's) one shutter time. LIGHT's splats
+    // make its error correlated across pixels: compared by independent runs.
+    const SceneArrays scene = grey_moving_box();
+    const std::vector<RenderResult> path = render_seeds(scene, grey_box_params("PATH", 64), 8);
+    ASSERT_GT(seed_mean(path).mean, 0.5);  // the wall is seen
+    for (const char* name : {"LIGHT", "BDPT"})
+        expect_runs_agree(render_seeds(scene, grey_box_params(name, 64), 8), path, name);
+    expect_one_time_fails(render_seeds(moving_box(0.f, 0.f, false, true, 0.5f), grey_box_params("BDPT", 64), 8), path,
+                          "BDPT");
 }
 
 TEST(MotionBlur, PathGeneratorsAgreeWithPathOnAMovingBox) {
@@ -259,6 +296,152 @@ TEST(MotionBlur, SppmAgreesWithPathOnAMovingBox) {
     EXPECT_LT(std::fabs(g.worst_block_z), 6.5) << "block " << g.worst_block;
 }
 
+/// The mean luminance of each 4×4 block (and, last, of the image) of each run of a set.
+std::vector<std::vector<double>> block_means(const std::vector<RenderResult>& runs) {
+    std::vector<std::vector<double>> out;
+    for (const RenderResult& r : runs) {
+        std::vector<double> m;
+        double all = 0.0;
+        for (int by = 0; by + 4 <= r.height; by += 4)
+            for (int bx = 0; bx + 4 <= r.width; bx += 4) {
+                double sum = 0.0;
+                for (int y = by; y < by + 4; ++y)
+                    for (int x = bx; x < bx + 4; ++x) {
+                        const float* p = &r.rgba[4 * (size_t(y) * r.width + x)];
+                        sum += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+                    }
+                m.push_back(sum / 16.0);
+                all += sum / 16.0;
+            }
+        m.push_back(all / double(m.size()));
+        out.push_back(m);
+    }
+    return out;
+}
+
+/// expect_runs_agree for the cache integrators, whose biases act on the light their caches hold: a block (and the
+/// image mean) may differ from PATH's by `allowance` × its indirect light — PATH's value less that of PATH's direct
+/// light only (`direct`, max_bounces 0) — and the excess beyond it is judged as there (z from the runs' spread:
+/// mean within 4.5, blocks within 6.5). Returns the worst block's z (0 when within the allowance).
+double expect_runs_agree_but_for_cache_bias(const std::vector<RenderResult>& runs,
+                                            const std::vector<RenderResult>& path,
+                                            const std::vector<RenderResult>& direct, double allowance,
+                                            const std::string& what, bool expect = true) {
+    const auto a = block_means(runs), b = block_means(path), d = block_means(direct);
+    auto stats = [](const std::vector<std::vector<double>>& set, size_t k, double* var_of_mean) {
+        double mu = 0.0, ss = 0.0;
+        for (const auto& run : set) mu += run[k] / double(set.size());
+        for (const auto& run : set) ss += (run[k] - mu) * (run[k] - mu);
+        *var_of_mean = ss / double(set.size() - 1) / double(set.size());
+        return mu;
+    };
+    double worst = 0.0, mean_z = 0.0;
+    const size_t n = a.front().size();
+    for (size_t k = 0; k < n; ++k) {
+        double va, vb, vd;
+        const double ma = stats(a, k, &va), mb = stats(b, k, &vb), md = stats(d, k, &vd);
+        const double excess = std::fmax(0.0, std::fabs(ma - mb) - allowance * std::fmax(0.0, mb - md));
+        const double z = std::copysign(excess / std::sqrt(std::fmax(va + vb, 1e-300)), ma - mb);
+        if (k + 1 == n) {
+            mean_z = z;
+            std::printf("%s, moving box: means %.5f vs %.5f (indirect %.5f)", what.c_str(), ma, mb, mb - md);
+        } else if (std::fabs(z) >= std::fabs(worst)) {
+            worst = z;
+        }
+    }
+    std::printf(", z %.2f beyond the allowance, worst block z %.2f of %zu\n", mean_z, worst, n - 1);
+    if (expect) {
+        EXPECT_LT(std::fabs(mean_z), 4.5) << what;
+        EXPECT_LT(std::fabs(worst), 6.5) << what;
+    }
+    return worst;
+}
+
+TEST(MotionBlur, PhotonAndIrradianceCacheAgreeWithPathOnAMovingBox) {
+    // One shutter pass per sample, each with a photon map or irradiance cache of its own time, used only by that
+    // pass's camera paths (photon_integrator.cpp, ic_integrator.cpp): the average over passes is the time average.
+    // Compared by independent runs, since a pass's map or cache correlates its error across pixels, but for their
+    // bias on the light their caches hold: up to 30 % of each block's indirect light (here the light the box throws
+    // back on the wall, 0.2–0.5 % of the wall's brightness). Measured beside PATH at 512 samples: PHOTON's density
+    // estimates next to the small box's edges (a disc half off a face finds half its photons: also in the still
+    // scene) and IRRADIANCE_CACHE's 64-ray pass gathers (a record whose few rays miss the box gets both a low E and
+    // a long reach R; docs/irradiance_cache.md, "Motion blur") put the wall's indirect light 10–20 % low. The still
+    // box at the shutter's middle — what both rendered before, one cache at one time — fails the same comparison.
+    const SceneArrays scene = grey_moving_box();
+    const SceneArrays middle = moving_box(0.f, 0.f, false, true, 0.5f);
+    const std::vector<RenderResult> path = render_seeds(scene, grey_box_params("PATH", 64), 8);
+    Params direct_only = grey_box_params("PATH", 64);
+    direct_only.set("max_bounces", int64_t(0));
+    const std::vector<RenderResult> direct = render_seeds(scene, direct_only, 8);
+    for (const char* name : {"PHOTON", "IRRADIANCE_CACHE"}) {
+        const Params p = grey_box_params(name, 16);
+        expect_runs_agree_but_for_cache_bias(render_seeds(scene, p, 8), path, direct, 0.3, name);
+        const double one_time = expect_runs_agree_but_for_cache_bias(render_seeds(middle, p, 8), path, direct, 0.3,
+                                                                     std::string(name) + " at one time", false);
+        EXPECT_GT(std::fabs(one_time), 6.5) << name;
+    }
+}
+
+TEST(MotionBlur, CacheIntegratorsSeeACancelInALaterShutterPassesCacheStage) {
+    // Each shutter pass builds its cache in stages of its own; a cancel while a later pass (work done ≥ 1) shoots its
+    // photons, builds its kd-tree or runs its pre-pass ends the render cancelled, without error, before its samples.
+    struct Case {
+        const char* integrator;
+        const char* stage;
+    };
+    for (const Case c : {Case{"PHOTON", "Tracing photons"}, Case{"PHOTON", "Building photon map"},
+                         Case{"IRRADIANCE_CACHE", "Irradiance cache"}}) {
+        Params p = grey_box_params(c.integrator, 64);
+        p.set("global_photons", int64_t(8000000));  // 1.28 M paths per pass: stages long enough to be seen
+        p.set("ic_gather_rays", int64_t(65536));    // 1,024 rays per record
+        Session s(grey_moving_box(), p);
+        s.start();
+        bool seen = false;
+        for (int i = 0; i < 400000 && !seen; ++i) {
+            const SessionProgress pr = s.progress();
+            if (pr.stage.name == c.stage && pr.work_done >= 1)
+                seen = true;
+            else if (pr.stop_reason != StopReason::Running)
+                break;
+            else
+                std::this_thread::sleep_for(std::chrono::microseconds(100));
+        }
+        s.cancel();
+        s.join();
+        const std::string what = std::string(c.integrator) + ", " + c.stage;
+        ASSERT_TRUE(seen) << what;
+        const SessionProgress pr = s.progress();
+        EXPECT_EQ(pr.stop_reason, StopReason::Cancelled) << what;
+        EXPECT_LT(pr.work_done, 64) << what;
+        EXPECT_FALSE(s.error().has_value()) << what;
+    }
+}
+
+TEST(MotionBlur, ShutterPassesAreStratifiedAndEveryPrefixSpreads) {
+    // stratified_shutter_time: n passes hold one time in each 1/n of the shutter, and the first j of them leave no
+    // gap over 4/j + 2/n (their strata's largest gap is under 4/j: shutter_time.h).
+    for (uint64_t n : {1u, 2u, 3u, 7u, 16u, 40u, 64u, 100u, 257u}) {
+        std::vector<int> hits(n, 0);
+        std::vector<float> times;
+        for (uint64_t j = 0; j < n; ++j) {
+            const float t = stratified_shutter_time(99, j, n);
+            ASSERT_GE(t, 0.f);
+            ASSERT_LT(t, 1.f);
+            ++hits[std::min<uint64_t>(n - 1, uint64_t(double(t) * double(n)))];
+            times.push_back(t);
+            if (j < 1) continue;
+            std::vector<float> sorted(times);
+            std::sort(sorted.begin(), sorted.end());
+            double gap = 1.0 - sorted.back() + sorted.front();
+            for (size_t i = 1; i < sorted.size(); ++i) gap = std::fmax(gap, sorted[i] - sorted[i - 1]);
+            EXPECT_LE(gap, 4.0 / double(j + 1) + 2.0 / double(n)) << n << " passes, prefix " << j + 1;
+        }
+        for (uint64_t k = 0; k < n; ++k) EXPECT_EQ(hits[k], 1) << n << " passes, stratum " << k;
+        // Another key jitters differently within the same strata.
+        EXPECT_NE(stratified_shutter_time(99, 0, n), stratified_shutter_time(100, 0, n)) << n;
+    }
+}
+
 TEST(MotionBlur, SurfacePointsAreWhereRaysFindThemAtTheirTime) {
     // Scene::surface_point (the surface sampler's points) of a moving box under a ShutterScope is the point a ray
     // traced at that time hits: the box's front face centre moves from x = −1 to x = 1.
@@ -289,7 +472,7 @@ TEST(MotionBlur, SurfacePointsAreWhereRaysFindThemAtTheirTime) {
 
 TEST(MotionBlur, ImagesDoNotDependOnTheThreadCount) {
     for (const char* name : {"PATH", "LIGHT", "BDPT", "SURFACE_SAMPLING", "SOURCE_SHOOTING", "RECEIVER_GATHERING",
-                             "MLT", "MMLT", "SPPM"}) {
+                             "MLT", "MMLT", "SPPM", "PHOTON", "IRRADIANCE_CACHE"}) {
         // A grey box and wall with two bounces: every path generator's indirect estimate runs.
         Params p1 = motion_params(name, 8, 1), p2 = motion_params(name, 8, 2);
         p1.set("max_bounces", int64_t(2)), p2.set("max_bounces", int64_t(2));
@@ -388,26 +571,24 @@ TEST(MotionBlur, MovingEmittersStayStillAndSaySo) {
     EXPECT_NE(unhonoured_features_note("PATH", ~0u, scene.scene()).find("moving emitting objects"), std::string::npos);
 }
 
-TEST(MotionBlur, IntegratorsThatDoNotRenderItSaySo) {
+TEST(MotionBlur, EveryIntegratorRendersItAndOneThatDidNotWouldSaySo) {
     const PreparedScene scene(moving_box(-1.f, 1.f, true), basic_params(4, 4, 1, 0));
-    // PHOTON and IRRADIANCE_CACHE build one cache at one time (the shutter's middle): they say so.
-    for (const char* name : {"PHOTON", "IRRADIANCE_CACHE"})
-        EXPECT_NE(
-            unhonoured_features_note(name, make_integrator(motion_params(name, 1))->honoured_features(), scene.scene())
-                .find("motion blur is not rendered"),
-            std::string::npos)
-            << name;
-    for (const char* name : {"SURFACE_SAMPLING", "SOURCE_SHOOTING", "RECEIVER_GATHERING", "MLT", "MMLT", "SPPM"})
-        EXPECT_TRUE(
-            unhonoured_features_note(name, make_integrator(motion_params(name, 1))->honoured_features(), scene.scene())
-                .find("motion blur") == std::string::npos)
-            << name;
-    EXPECT_TRUE(unhonoured_features_note("PATH", k_feature_motion_blur, scene.scene()).empty());
+    // Every integrator of the registry renders motion blur (PHOTON and IRRADIANCE_CACHE by shutter passes with a
+    // cache each): none gets the note.
+    for (const IntegratorEntry& e : integrator_registry())
+        EXPECT_TRUE(unhonoured_features_note(e.name, make_integrator(motion_params(e.name, 1))->honoured_features(),
+                                             scene.scene())
+                        .find("motion blur") == std::string::npos)
+            << e.name;
+    // One that did not would say so, and a still scene gets no note.
+    EXPECT_NE(unhonoured_features_note("X", 0, scene.scene()).find("motion blur is not rendered"), std::string::npos);
+    const PreparedScene still(moving_box(-1.f, 1.f, false), basic_params(4, 4, 1, 0));
+    EXPECT_TRUE(unhonoured_features_note("X", 0, still.scene()).empty());
 }
 
 TEST(MotionBlur, AutoNotesWhatItsChoiceDoesNotRender) {
-    // AUTO renders with the integrator it chose: the note (if any) is that integrator's, logged after the choice,
-    // never one for AUTO itself; a choice that renders motion blur logs no motion-blur note.
+    // AUTO renders with the integrator it chose: a note (if any) is that integrator's, logged after the choice,
+    // never one for AUTO itself; every choice renders motion blur, so no motion-blur note is logged.
     Params p = motion_params("AUTO", 2);
     Session s(moving_box(-1.f, 1.f, true), p);
     s.start();
@@ -418,9 +599,6 @@ TEST(MotionBlur, AutoNotesWhatItsChoiceDoesNotRender) {
     for (const std::string& l : log)
         if (l.rfind("Auto: chose ", 0) == 0) chosen = l.substr(12, l.find(' ', 12) - 12);
     ASSERT_FALSE(chosen.empty());
-    const bool blurs = chosen == "PATH" || chosen == "LIGHT" || chosen == "BDPT" || chosen == "SURFACE_SAMPLING" ||
-                       chosen == "SOURCE_SHOOTING" || chosen == "RECEIVER_GATHERING" || chosen == "MLT" ||
-                       chosen == "MMLT" || chosen == "SPPM";
     int notes = 0;
     for (const std::string& l : log) {
         EXPECT_NE(l.rfind("AUTO: ", 0), 0u) << l;
@@ -429,7 +607,7 @@ TEST(MotionBlur, AutoNotesWhatItsChoiceDoesNotRender) {
             EXPECT_EQ(l.rfind(chosen + ": ", 0), 0u) << l;
         }
     }
-    EXPECT_EQ(notes, blurs ? 0 : 1) << "AUTO chose " << chosen;
+    EXPECT_EQ(notes, 0) << "AUTO chose " << chosen;  // every choice renders it
 }
 
 }  // namespace
