@@ -104,6 +104,7 @@ SANITIZE_SKIP := AnalyticLights.SphereLightLightSamplingToAFewTenthsOfAPercent \
     Mlt.EqualsPathTracingOnTheDoorScene \
     Mlt.FurnaceImageAndBootstrapBrightnessAreTheClosedForm \
     Mlt.MultiplexedPerDepthBrightnessSumsToTheWholeSamplesB \
+    MotionBlur.PhotonAndIrradianceCacheAgreeWithPathOnAMovingBox \
     NoiseEstimate.IsHonestForEverySamplerOnTheRoom \
     NoiseEstimate.IsHonestForLightTracingBdptAndThePathGenerators \
     PathGenerators.EqualPathTracingWithAreaLightsGlassAndAMirror \

@@ -23,8 +23,7 @@ std::string unhonoured_features_note(const std::string& integrator, uint32_t hon
          "the bump shadowing term at Bump and Normal Map normals is not applied everywhere (its images of bumped "
          "surfaces are brighter toward the terminator than PATH's)");
     note(k_feature_motion_blur, scene.has_motion(),
-         "motion blur is not rendered: the camera and every object are at the shutter's middle, where its one "
-         "cache is built (PATH, LIGHT, BDPT, the path generators, MLT, MMLT and SPPM render it)");
+         "motion blur is not rendered: the camera and every object are at the shutter's middle");
     // Every integrator: a moving emitter's triangles are lights at fixed places.
     if (scene.has_still_moving_emitters())
         what += std::string(what.empty() ? "" : "; ") +

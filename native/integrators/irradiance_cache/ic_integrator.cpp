@@ -11,7 +11,9 @@
 #include "core/rng.h"
 #include "integrators/camera_tiles.h"
 #include "integrators/irradiance_cache/ic_cache.h"
+#include "integrators/progressive_driver.h"
 #include "lights/light_sampler.h"
+#include "scene/shutter_time.h"
 
 namespace candela {
 
@@ -45,16 +47,15 @@ public:
         : m_settings(IcSettings::from_params(params)), m_probe(probe) {}
 
     void render(const Scene& scene, Film& film, RenderContext& ctx) override {
+        m_logged_full = false;
+        if (scene.has_motion()) return render_moving(scene, film, ctx);
         const LightSampler light_sampler = make_light_sampler("TREE", scene.lights());
-        IcCacheRules rules;
-        rules.a = m_settings.error;
-        rules.gradients = m_settings.gradients;
-        rules.neighbour_clamping = m_settings.neighbour_clamping;
-        rules.capacity = ic_record_capacity(m_settings, double(film.width()) * film.height());
+        const IcCacheRules rules = cache_rules(film);
         IcCache cache(scene.bounds(), rules);
         IcTracer tracer(scene, m_settings, light_sampler, cache, PixelFootprint::of(scene.camera()), ctx.cancel,
                         m_probe);
         State state{scene, film, ctx, cache, tracer};
+        state.seed = m_settings.pixel.seed;
         if (!prepass(state)) {
             ctx.counters.stop_reason = int(StopReason::Cancelled);
             return;
@@ -65,6 +66,8 @@ public:
                 " from the pre-pass, " + std::to_string(cache.size() - from_prepass) + " added while rendering)");
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
+    // Motion blur: one shutter time per pass, with a cache of that time (render_moving).
+    uint32_t honoured_features() const override { return k_feature_motion_blur; }
 
 private:
     struct State {
@@ -73,8 +76,82 @@ private:
         RenderContext& ctx;
         IcCache& cache;
         IcTracer& tracer;
-        bool logged_full = false;
+        uint64_t seed = 0;                            // of the pre-pass gathers' keys
+        float time = k_shutter_middle;                // the shutter time every path of this cache sees
+        const std::vector<float>* earlier = nullptr;  // IC Records of earlier shutter passes (motion blur)
     };
+
+    IcCacheRules cache_rules(const Film& film) const {
+        IcCacheRules rules;
+        rules.a = m_settings.error;
+        rules.gradients = m_settings.gradients;
+        rules.neighbour_clamping = m_settings.neighbour_clamping;
+        rules.capacity = ic_record_capacity(m_settings, double(film.width()) * film.height());
+        return rules;
+    }
+
+    /// Motion blur: the samples are rendered as T = Samples shutter passes, pass j at one time τ_j
+    /// (stratified_shutter_time: one τ in each 1/T of the shutter). Each pass builds a cache of its own at τ_j — the
+    /// pre-pass, then sample j of every pixel, which reads it and completes it — so no record is interpolated at a
+    /// point of another time, and the film's mean over the passes is the time average. A cache built per pass
+    /// costs its gathers T times over, so a pass's records gather M_t = max(⌈M/T⌉, 64) rays (M = Gather Rays; M
+    /// itself if it is below 64): a record's E is unbiased for any M_t and its variance ∝ 1/M_t, and the T passes'
+    /// caches are independent, so their average holds T·M_t ≥ M rays' worth of record noise, what one cache of M
+    /// rays has; the interpolation's bias is set by a and the spacing limits, which do not change. 64 rays (5 × 13
+    /// strata) is the least kept for R and the gradients, which a pass uses and the average does not smooth. The
+    /// gathers then cost max(1, 64·T/M) times the still render's. One cache exists at a time.
+    void render_moving(const Scene& scene, Film& film, RenderContext& ctx) {
+        const int64_t passes = m_settings.pixel.samples;
+        IcSettings pass_settings = m_settings;
+        constexpr int k_min_rays = 64;
+        if (m_settings.gather_rays > k_min_rays)
+            pass_settings.gather_rays =
+                int(std::max<int64_t>(k_min_rays, (int64_t(m_settings.gather_rays) + passes - 1) / passes));
+        const LightSampler light_sampler = make_light_sampler("TREE", scene.lights());
+        const IcCacheRules rules = cache_rules(film);
+        const PixelFootprint footprint = PixelFootprint::of(scene.camera());
+        const uint64_t time_key = hash_combine(m_settings.pixel.seed, 0x6963206d62ULL);
+        std::vector<float> earlier(size_t(film.width()) * film.height(), 0.f);
+        const GatherStrata strata = GatherStrata::for_rays(pass_settings.gather_rays);
+        ctx.log("irradiance cache: motion blur: " + std::to_string(passes) +
+                " shutter passes of one sample per pixel, each with a cache of its own time, gathers of " +
+                std::to_string(strata.count()) + " rays");
+        size_t records = 0;
+        int64_t built = 0;
+        ProgressivePlan plan;
+        plan.total = passes;
+        plan.max_pass = camera_max_pass(film, m_settings.pixel);
+        plan.time_limit = m_settings.pixel.time_limit;
+        plan.noise_threshold = m_settings.pixel.noise_threshold;
+        run_progressive(
+            ctx, plan,
+            [&](int64_t begin, int64_t end) {
+                for (int64_t j = begin; j < end && !ctx.cancel.cancelled(); ++j) {
+                    IcCache cache(scene.bounds(), rules);
+                    IcTracer tracer(scene, pass_settings, light_sampler, cache, footprint, ctx.cancel, m_probe);
+                    State state{scene, film, ctx, cache, tracer};
+                    state.seed = hash_combine(m_settings.pixel.seed, uint64_t(j));
+                    state.time = stratified_shutter_time(time_key, uint64_t(j), uint64_t(passes));
+                    state.earlier = &earlier;
+                    if (!prepass(state)) return;  // the driver sees the cancel
+                    tracer.set_stage(IcStage::Render);
+                    const CameraTilePass<IcTracer> tiles(scene, film, ctx, m_settings.pixel, tracer);
+                    render_range(state, tiles, j, j + 1);
+                    if (ctx.cancel.cancelled()) return;
+                    for (const IcRecord& r : cache.records()) {
+                        const int x = r.pixel_x - film.origin_x(), y = r.pixel_y - film.origin_y();
+                        if (x >= 0 && y >= 0 && x < film.width() && y < film.height())
+                            earlier[size_t(y) * film.width() + x] += 1.f;
+                    }
+                    records += cache.size();
+                    ++built;
+                }
+            },
+            NoiseSource{});
+        if (built > 0)
+            ctx.log("irradiance cache: " + std::to_string(records) + " records in " + std::to_string(built) +
+                    " caches (" + std::to_string(records / size_t(built)) + " per shutter pass)");
+    }
 
     /// Inserts a pass's candidates (the cache is not read meanwhile) in raster order — by the full-frame pixel
     /// whose path made them, bottom row first, and for one pixel in the order its samples ran, which is fixed — so
@@ -89,8 +166,8 @@ private:
                 ++dropped;
             else
                 s.cache.insert(r);
-        if (dropped && !s.logged_full) {
-            s.logged_full = true;
+        if (dropped && !m_logged_full) {
+            m_logged_full = true;
             s.ctx.log("irradiance cache full at " + std::to_string(s.cache.size()) +
                       " records (its memory estimate): further records are used where made but not stored");
         }
@@ -103,7 +180,7 @@ private:
         AovFilm* aovs = s.ctx.aovs;
         if (!aovs || !aovs->enabled("IC Records")) return;
         const int w = s.film.width(), h = s.film.height();
-        std::vector<float> count(size_t(w) * h, 0.f);
+        std::vector<float> count = s.earlier ? *s.earlier : std::vector<float>(size_t(w) * h, 0.f);
         for (const IcRecord& r : s.cache.records()) {
             const int x = r.pixel_x - s.film.origin_x(), y = r.pixel_y - s.film.origin_y();
             if (x >= 0 && y >= 0 && x < w && y < h) count[size_t(y) * w + x] += 1.f;
@@ -133,6 +210,7 @@ private:
                 parallel_ordered(
                     s.ctx.threads, tiles.size(), size_t(2 * std::max(1, s.ctx.threads)),
                     [&](size_t t) {
+                        const ShutterScope scope(s.time);
                         const Tile& tile = tiles[t];
                         std::vector<IcRecord> out;
                         PathStats stats;
@@ -142,8 +220,8 @@ private:
                                 const int fx = x0 + x, fy = y0 + y;
                                 if (!on_level(fx, fy, st, top)) continue;
                                 ++points;
-                                const uint64_t key = hash_values(m_settings.pixel.seed, uint64_t(st),
-                                                                 (uint64_t(uint32_t(fy)) << 32) | uint32_t(fx));
+                                const uint64_t key =
+                                    hash_values(s.seed, uint64_t(st), (uint64_t(uint32_t(fy)) << 32) | uint32_t(fx));
                                 IcRecord r;
                                 if (s.tracer.prepass_record(fx, fy, key, stats, &r)) out.push_back(r);
                             }
@@ -176,35 +254,36 @@ private:
         plan.time_limit = m_settings.pixel.time_limit;
         plan.noise_threshold = m_settings.pixel.noise_threshold;
         run_progressive(
-            s.ctx, plan,
-            [&](int64_t begin, int64_t end) {
-                std::vector<IcRecord> pending;
-                try {
-                    parallel_ordered(
-                        s.ctx.threads, s.film.tiles().size(), size_t(2 * std::max(1, s.ctx.threads)),
-                        [&](size_t t) {
-                            std::vector<IcRecord> out;
-                            struct Sink {  // the tracer's records go to `out` while this tile renders
-                                explicit Sink(std::vector<IcRecord>* v) { IcTracer::set_sink(v); }
-                                ~Sink() { IcTracer::set_sink(nullptr); }
-                            } sink(&out);
-                            tiles.render_tile(t, int(begin), int(end));
-                            return out;
-                        },
-                        [&](size_t, std::vector<IcRecord>&& out) {
-                            pending.insert(pending.end(), out.begin(), out.end());
-                        },
-                        &s.ctx.cancel);
-                } catch (const Cancelled&) {
-                    return;  // the driver sees the cancel
-                }
-                if (!s.ctx.cancel.cancelled()) merge(s, pending);
-            },
-            NoiseSource{});
+            s.ctx, plan, [&](int64_t begin, int64_t end) { render_range(s, tiles, begin, end); }, NoiseSource{});
+    }
+
+    /// Samples [begin, end) of every pixel reading the cache as it is; the records they make are merged after.
+    void render_range(State& s, const CameraTilePass<IcTracer>& tiles, int64_t begin, int64_t end) {
+        std::vector<IcRecord> pending;
+        try {
+            parallel_ordered(
+                s.ctx.threads, s.film.tiles().size(), size_t(2 * std::max(1, s.ctx.threads)),
+                [&](size_t t) {
+                    const ShutterScope scope(s.time);
+                    std::vector<IcRecord> out;
+                    struct Sink {  // the tracer's records go to `out` while this tile renders
+                        explicit Sink(std::vector<IcRecord>* v) { IcTracer::set_sink(v); }
+                        ~Sink() { IcTracer::set_sink(nullptr); }
+                    } sink(&out);
+                    tiles.render_tile(t, int(begin), int(end));
+                    return out;
+                },
+                [&](size_t, std::vector<IcRecord>&& out) { pending.insert(pending.end(), out.begin(), out.end()); },
+                &s.ctx.cancel);
+        } catch (const Cancelled&) {
+            return;  // the driver sees the cancel
+        }
+        if (!s.ctx.cancel.cancelled()) merge(s, pending);
     }
 
     IcSettings m_settings;
     const IcProbe* m_probe;
+    bool m_logged_full = false;  // "cache full" is logged once per render
 };
 
 }  // namespace

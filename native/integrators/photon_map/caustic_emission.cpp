@@ -88,6 +88,7 @@ CausticAnalysis analyse_caustics(const Scene& scene, float alpha_threshold) {
             }
         }
         if (points.empty()) continue;
+        out.moving |= scene.object_moves(o);
         CausticTarget target;
         target.center = (lo + hi) * 0.5f;
         for (const Vec3& p : points) target.radius = std::max(target.radius, length(p - target.center));

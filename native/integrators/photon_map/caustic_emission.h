@@ -37,6 +37,7 @@ struct CausticAnalysis {
     bool any_traced_material = false;    // some material may have a traced lobe somewhere
     std::vector<CausticTarget> targets;  // the bounding spheres of the objects with traced triangles
     bool merged = false;                 // too many objects: one sphere around them all
+    bool moving = false;  // some target's object moves (motion blur): its sphere is the one at the thread's time
 };
 
 /// Finds the materials that may have traced lobes (textured ones conservatively: any delta or glossy closure) and
