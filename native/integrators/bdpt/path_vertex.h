@@ -10,7 +10,9 @@
 // pbrt does: a distant light's "position" is a direction.
 #pragma once
 
-#include <optional>
+#include <new>
+#include <type_traits>
+#include <utility>
 
 #include "integrators/common/vertex_bsdf.h"
 #include "lights/light_emission.h"
@@ -19,6 +21,29 @@
 namespace candela {
 
 enum class VertexKind : uint8_t { Camera, Light, Surface };
+
+/// A surface vertex's BSDF, constructed in place (it refers to the vertex's `hit`), with std::optional's interface.
+/// The storage is raw: declaring a vertex (BDPT makes one for every fresh light or lens point of a strategy) must not
+/// initialise the BSDF's ~1.6 KB, which GCC does for an optional's payload.
+class VertexBsdfSlot {
+public:
+    VertexBsdfSlot() {}
+    template <class... Args>
+    VertexBsdf& emplace(Args&&... args) {
+        m_made = true;
+        return *new (m_storage) VertexBsdf(std::forward<Args>(args)...);
+    }
+    void reset() { m_made = false; }
+    explicit operator bool() const { return m_made; }
+    const VertexBsdf* operator->() const { return get(); }
+    const VertexBsdf& operator*() const { return *get(); }
+
+private:
+    static_assert(std::is_trivially_destructible_v<VertexBsdf>, "VertexBsdfSlot never destroys its BSDF");
+    const VertexBsdf* get() const { return std::launder(reinterpret_cast<const VertexBsdf*>(m_storage)); }
+    bool m_made = false;
+    alignas(VertexBsdf) unsigned char m_storage[sizeof(VertexBsdf)];
+};
 
 struct PathVertex {
     VertexKind kind = VertexKind::Surface;
@@ -36,7 +61,7 @@ struct PathVertex {
     bool delta_light = false;  // an emitter no ray can hit (point, spot, soft sun): no strategy s = 0 reaches it
     // Surface vertices
     SurfaceHit hit;
-    std::optional<VertexBsdf> bsdf;  // constructed in place (it refers to `hit`): never copy a surface vertex
+    VertexBsdfSlot bsdf;  // constructed in place (it refers to `hit`): never copy a surface vertex
 
     /// Back to a blank vertex (the BSDF refers to `hit`: vertices are reused in place, never copied).
     void clear() {

@@ -44,24 +44,34 @@ float heuristic(MisHeuristic h, float r) { return h == MisHeuristic::Power ? r *
 }  // namespace
 
 float Densities::light_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next) const {
-    if (cur.kind == VertexKind::Light || (cur.kind == VertexKind::Surface && !prev)) return emission(cur, next);
+    return light_side(cur, prev, next, prev ? direction(cur, *prev) : Vec3(0.f), direction(cur, next));
+}
+float Densities::light_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, const Vec3& w_prev,
+                            const Vec3& w_next) const {
+    if (cur.kind == VertexKind::Light || (cur.kind == VertexKind::Surface && !prev)) return emission(cur, next, w_next);
     if (cur.kind != VertexKind::Surface || !prev) return 0.f;
-    return solid_angle_to_area(cur, next, cur.bsdf->pdf_light(direction(cur, *prev), direction(cur, next)));
+    return solid_angle_to_area(cur, next, cur.bsdf->pdf_light(w_prev, w_next));
 }
 float Densities::camera_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next) const {
+    return camera_side(cur, prev, next, prev ? direction(cur, *prev) : Vec3(0.f), direction(cur, next));
+}
+float Densities::camera_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, const Vec3& w_prev,
+                             const Vec3& w_next) const {
     if (cur.kind == VertexKind::Camera) {
         float pos = 0.f, dir = 0.f;
-        const Ray ray{cur.p, direction(cur, next)};
+        const Ray ray{cur.p, w_next};
         m_c.scene.camera().pdf_we(ray, &pos, &dir);
         return solid_angle_to_area(cur, next, dir);
     }
     if (cur.kind != VertexKind::Surface || !prev) return 0.f;
-    return solid_angle_to_area(cur, next, cur.bsdf->pdf_camera(direction(cur, *prev), direction(cur, next)));
+    return solid_angle_to_area(cur, next, cur.bsdf->pdf_camera(w_prev, w_next));
 }
 float Densities::emission(const PathVertex& light, const PathVertex& next) const {
+    return emission(light, next, direction(light, next));
+}
+float Densities::emission(const PathVertex& light, const PathVertex& next, const Vec3& d) const {
     const int32_t e = emitter_of(light);
     if (e < 0) return 0.f;
-    const Vec3 d = direction(light, next);
     const Light& l = m_c.emitters[size_t(e)];
     // Point and spot lights (any radius): from their centre, as a point (see light_center_direction_pdf).
     if (std::holds_alternative<PointLight>(l))
@@ -100,11 +110,17 @@ float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, in
     const PathVertex* qs_minus = s > 1 ? &Y(s - 2) : nullptr;
     const PathVertex& pt = Z(t - 1);
     const PathVertex* pt_minus = t > 1 ? &Z(t - 2) : nullptr;
-    // The reverse densities the connection changes.
-    const float pt_rev = qs ? d.light_side(*qs, qs_minus, pt) : d.origin(pt, *pt_minus);
-    const float pt_minus_rev = !pt_minus ? 0.f : qs ? d.light_side(pt, qs, *pt_minus) : d.emission(pt, *pt_minus);
-    const float qs_rev = qs ? d.camera_side(pt, pt_minus, *qs) : 0.f;
-    const float qs_minus_rev = qs_minus ? d.camera_side(*qs, &pt, *qs_minus) : 0.f;
+    // The reverse densities the connection changes, from the three unit directions they need (each made once:
+    // direction(b, a) = −direction(a, b) exactly, as no connection joins two distant vertices).
+    const Vec3 w_conn = qs ? direction(*qs, pt) : Vec3(0.f);  // light side → camera side
+    const Vec3 w_qs_prev = qs_minus ? direction(*qs, *qs_minus) : Vec3(0.f);
+    const Vec3 w_pt_prev = pt_minus ? direction(pt, *pt_minus) : Vec3(0.f);
+    const float pt_rev = qs ? d.light_side(*qs, qs_minus, pt, w_qs_prev, w_conn) : d.origin(pt, *pt_minus);
+    const float pt_minus_rev = !pt_minus ? 0.f
+                               : qs      ? d.light_side(pt, qs, *pt_minus, -w_conn, w_pt_prev)
+                                         : d.emission(pt, *pt_minus, w_pt_prev);
+    const float qs_rev = qs ? d.camera_side(pt, pt_minus, *qs, w_pt_prev, -w_conn) : 0.f;
+    const float qs_minus_rev = qs_minus ? d.camera_side(*qs, &pt, *qs_minus, w_conn, w_qs_prev) : 0.f;
     const MisHeuristic h = c.settings.heuristic;
     const bool connectable = c.scene.camera().connectable();
     float sum = 0.f, ri = 1.f;

@@ -32,6 +32,13 @@ public:
     float camera_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next) const;
     /// An emitter's density of emitting toward `next` (area measure at next; parallel rays for a distant one).
     float emission(const PathVertex& light, const PathVertex& next) const;
+    /// The same three with the unit directions from `cur` (or `light`) toward prev and next given (w_prev unused
+    /// without prev): strategy_weight knows each of them once.
+    float light_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, const Vec3& w_prev,
+                     const Vec3& w_next) const;
+    float camera_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, const Vec3& w_prev,
+                      const Vec3& w_next) const;
+    float emission(const PathVertex& light, const PathVertex& next, const Vec3& d) const;
     /// The density of an emitting vertex as the origin of a light subpath: P(emitter)·p_pos (a distant one: its
     /// direction's solid-angle density).
     float origin(const PathVertex& v, const PathVertex& toward) const;

@@ -26,6 +26,8 @@
 #pragma once
 
 #include <cmath>
+#include <new>
+#include <type_traits>
 
 #include "bsdf/bsdf.h"
 #include "core/math.h"
@@ -54,11 +56,7 @@ public:
     /// The shading point of the side w arrives from (shaded on first use).
     const ShadingPoint& shading(const Vec3& w) const {
         const int s = side(w);
-        if (!m_shaded[s]) {
-            m_sp[s] = m_scene.shade(m_hit, w);
-            if (m_subset) m_sp[s].own(m_subset->apply(m_sp[s].bsdf()));
-            m_shaded[s] = true;
-        }
+        if (__builtin_expect(!m_shaded[s], 0)) shade_side(s, w);
         return m_sp[s];
     }
     bool has_non_delta(const Vec3& w) const { return shading(w).bsdf().has_non_delta(); }
@@ -67,7 +65,7 @@ public:
     /// normal (bsdf/bsdf.h: it scales f only, so every sampling density here is unchanged).
     Color f(const Vec3& w_c, const Vec3& w_l) const {
         const ShadingPoint& sp = shading(w_c);
-        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        const SurfaceVertex& v = vertex(w_c, sp);
         const Vec3 l = v.frame.to_local(w_l);
         if (leaks(dot(w_l, v.ng), l.z)) return Color(0.f);
         if (sp.bent) {
@@ -80,7 +78,7 @@ public:
     /// The density with which camera-side BSDF sampling from w_c produces w_l (0 where it leaks).
     float pdf_camera(const Vec3& w_c, const Vec3& w_l) const {
         const ShadingPoint& sp = shading(w_c);
-        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        const SurfaceVertex& v = vertex(w_c, sp);
         const Vec3 l = v.frame.to_local(w_l);
         if (leaks(dot(w_l, v.ng), l.z)) return 0.f;
         return sp.bsdf().pdf(v.frame.to_local(w_c), l);
@@ -88,7 +86,7 @@ public:
     /// The density with which light-side sampling (sample_light) from w_l produces w_c (non-delta).
     float pdf_light(const Vec3& w_l, const Vec3& w_c) const {
         const ShadingPoint& sp = shading(w_l);
-        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_l);
+        const SurfaceVertex& v = vertex(w_l, sp);
         const float eps = mixture_share(v, sp.bsdf());
         const Vec3 c = v.frame.to_local(w_c);
         float p = leaks(dot(w_c, v.ng), c.z) ? 0.f : sp.bsdf().pdf(v.frame.to_local(w_l), c, TransportMode::Importance);
@@ -110,7 +108,7 @@ public:
         Sample out;
         const ShadingPoint& sp = shading(w_l);
         const Bsdf& bsdf = sp.bsdf();
-        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_l);
+        const SurfaceVertex& v = vertex(w_l, sp);
         const float eps = mixture_share(v, bsdf);
         if (u_lobe < eps) {  // the cosine share about ng (non-delta)
             const float uc = u_lobe / eps;
@@ -150,7 +148,7 @@ public:
     Sample sample_camera(const Vec3& w_c, Vec2 u, float u_lobe) const {
         Sample out;
         const ShadingPoint& sp = shading(w_c);
-        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        const SurfaceVertex& v = vertex(w_c, sp);
         const BsdfSample bs = sp.bsdf().sample(v.frame.to_local(w_c), u, u_lobe);
         if (!bs.valid() || is_black(bs.f)) return {};
         out.w = v.frame.to_world(bs.wi);
@@ -167,7 +165,7 @@ public:
     /// vertex.
     float camera_cosine(const Vec3& w_c, const Vec3& w_l) const {
         const ShadingPoint& sp = shading(w_c);
-        const SurfaceVertex v = SurfaceVertex::at(m_hit, sp.ns, w_c);
+        const SurfaceVertex& v = vertex(w_c, sp);
         return std::fabs(dot(w_l, v.frame.n));
     }
 
@@ -181,6 +179,25 @@ public:
 
 private:
     int side(const Vec3& w) const { return dot(w, m_hit.ng) < 0.f ? 1 : 0; }
+
+    __attribute__((noinline)) void shade_side(int s, const Vec3& w) const {
+        m_sp[s] = m_scene.shade(m_hit, w);
+        if (m_subset) m_sp[s].own(m_subset->apply(m_sp[s].bsdf()));
+        m_shaded[s] = true;
+    }
+    /// SurfaceVertex::at(hit, sp.ns, w) for w's side (sp: that side's shading point). The vertex depends on w only
+    /// through its side and whether w is above that side's shading normal (the frame is then built on ns, else on
+    /// ng), so the at most four vertices are made once each and shared by every evaluation at this vertex.
+    const SurfaceVertex& vertex(const Vec3& w, const ShadingPoint& sp) const {
+        const int s = side(w);
+        const float c = dot(w, sp.ns);
+        const int k = (s == 1 ? -c : c) > 0.f ? 1 : 0;  // w above ns turned to its side: the frame is ns's
+        if (!m_vertex_made[s][k]) {
+            new (m_vertex[s][k]) SurfaceVertex(SurfaceVertex::at(m_hit, sp.ns, w));
+            m_vertex_made[s][k] = true;
+        }
+        return *std::launder(reinterpret_cast<const SurfaceVertex*>(m_vertex[s][k]));
+    }
 
     /// Whether the frame of direction w (on its own side) is the shading one: w above its shading hemisphere.
     bool frame_is_shading(const Vec3& w) const {
@@ -204,6 +221,11 @@ private:
     const LobeSubset* m_subset = nullptr;
     mutable ShadingPoint m_sp[2];
     mutable bool m_shaded[2] = {false, false};
+    // [side][frame on ns]: see vertex(). Raw storage: most vertices use one of the four, and zero-filling them all
+    // would cost more than making that one.
+    static_assert(std::is_trivially_destructible_v<SurfaceVertex>, "VertexBsdf keeps its vertices in raw storage");
+    alignas(SurfaceVertex) mutable unsigned char m_vertex[2][2][sizeof(SurfaceVertex)];
+    mutable bool m_vertex_made[2][2] = {{false, false}, {false, false}};
 };
 
 }  // namespace candela
