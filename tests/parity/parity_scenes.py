@@ -432,7 +432,9 @@ def build(name, scene=None, size=128, threads=0, out_dir="."):
     if name.endswith("_cycles_defaults"):
         for key, value in CYCLES_DEFAULT_LIGHT_PATHS.items():
             setattr(scene.cycles, key, value)
-        if hasattr(scene, "candela"):
-            from candela.params import copy_cycles_light_paths
-            copy_cycles_light_paths(scene)
+    # Candela's Light Paths settings follow Cycles' for every scene: the suite renders all scenes in one Blender
+    # scene, so values copied for a *_cycles_defaults scene would otherwise stay for the scenes after it.
+    if hasattr(scene, "candela"):
+        from candela.params import copy_cycles_light_paths
+        copy_cycles_light_paths(scene)
     return scene
