@@ -105,13 +105,14 @@ def test_cancel_then_render_again_fifty_times_without_growing():
 def test_cancel_the_irradiance_cache_in_its_pre_pass_and_while_rendering():
     """The irradiance cache's stages: Esc during the pre-pass (its stage on the status line) and during the render
     passes, within the same bound as PATH's."""
-    scene = scenes.tiny_scene(64, 48, samples=16)
+    scene = scenes.tiny_scene(160, 120, samples=16)
     scene.objects["Plane"].data.materials[0] = scenes.lambert_material("Lambert", (0.8, 0.8, 0.8))  # cached lobes
     scene.candela.integrator = "IRRADIANCE_CACHE"
-    scene.candela.ic_gather_rays = 65536            # a pre-pass of many seconds: ~100 records of 65,536 rays
-    scene.candela.ic_max_spacing = 4.0
+    scene.candela.ic_gather_rays = 65536            # a pre-pass of seconds: hundreds of records of 65,536 rays
+    scene.candela.ic_max_spacing = 2.0
     engine = FakeEngine(break_on_stats="Irradiance cache")   # Esc once the status line shows the pre-pass
     progress, latency = render(scene, engine)
+    assert latency is not None, (progress, engine.stats[:20])
     print(f"irradiance cache, Esc in the pre-pass: returned {latency * 1000:.0f} ms after Esc")
     assert progress["phase"] == "cancelled" and progress["samples_done"] == 0, progress
     assert any("Irradiance cache" in line and "%" in line for line in engine.stats), engine.stats
