@@ -70,6 +70,27 @@ def copy_cycles_light_paths(scene):
     return copied
 
 
+LIGHT_PATHS_PANELS = ("Max Bounces", "Clamping", "Caustics")
+
+
+def unapplied_light_paths(settings):
+    """The Light Paths settings (CYCLES_LIGHT_PATHS, Max Bounces aside) set away from their unbiased defaults that the
+    chosen integrator does not apply: it does not publish them (a path started at a light has no camera-side bounce
+    count, ray type or clamp), so its image is the full, unclamped solution. [(label, value), ...] in PATH's order."""
+    published = schema.integrator_params()
+    mine = {spec["key"] for spec in published.get(settings.integrator, [])}
+    out = []
+    for spec in published.get("PATH", []):
+        key = spec["key"]
+        if key == "max_bounces" or key not in CYCLES_LIGHT_PATHS.values() or key in mine:
+            continue
+        value = setting_value(spec, getattr(settings, key, spec["default"]))
+        if value != setting_value(spec, spec["default"]):
+            group = spec.get("group") or ""
+            out.append((f"{group} > {spec['label']}" if group in LIGHT_PATHS_PANELS else spec["label"], value))
+    return out
+
+
 def frame_size(render):
     """Full frame in pixels with the resolution percentage applied (Blender's integer arithmetic)."""
     return (render.resolution_x * render.resolution_percentage // 100,

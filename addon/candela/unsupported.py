@@ -12,6 +12,7 @@ and depth of field through a panorama.
 import bpy
 
 from .export.shader_nodes import resolve
+from .params import unapplied_light_paths
 
 # Blender's pass toggles Candela writes (passes.py); every other use_pass_* of the view layer is reported.
 PRODUCED = {"use_pass_combined", "use_pass_z", "use_pass_normal", "use_pass_object_index",
@@ -111,6 +112,23 @@ def camera_messages(camera, scene):
     return out
 
 
+def _shown(value):
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def light_paths_messages(settings):
+    """One warning when Light Paths settings (e.g. copied from Cycles) are set that the chosen integrator does not
+    apply: without it the image would silently be brighter than PATH's or Cycles' with the same settings."""
+    unapplied = unapplied_light_paths(settings)
+    if not unapplied:
+        return []
+    listed = ", ".join(f"{label} {_shown(value)}" for label, value in unapplied)
+    return [f"Candela: {settings.integrator} does not apply the path tracer's Light Paths settings {listed}: its "
+            "image is the full solution without these limits and clamps (PATH applies them)"]
+
+
 def ignored_settings(depsgraph, camera=None):
     """The messages for the evaluated scene of `depsgraph` (camera: the render camera, if any)."""
     scene = depsgraph.scene
@@ -131,6 +149,7 @@ def ignored_settings(depsgraph, camera=None):
         elif isinstance(block, bpy.types.Object):
             out += object_messages(block)
     out += world_messages(scene.world)
+    out += light_paths_messages(scene.candela)
     if camera is not None:
         out += camera_messages(camera, scene)
     return out

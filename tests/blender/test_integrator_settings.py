@@ -126,3 +126,26 @@ def test_the_metropolis_integrators_publish_their_settings_under_their_saved_num
         assert specs["mlt_large_step"]["min"] == 0.0 and specs["mlt_large_step"]["max"] == 1.0
         assert specs["mlt_chains"]["min"] == 2
         assert "Metropolis" in labels
+
+
+def test_light_paths_settings_an_integrator_does_not_apply_are_named_in_one_warning():
+    ensure_addon()
+    from candela import unsupported
+    scene = tiny_scene(width=8, height=6, samples=1)
+    settings = scene.candela
+    settings.integrator = "BDPT"
+    assert unsupported.light_paths_messages(settings) == []       # the unbiased defaults: nothing to say
+    settings.clamp_indirect = 10.0
+    settings.glossy_bounces = 4
+    settings.filter_glossy = 1.0
+    (message,) = unsupported.light_paths_messages(settings)
+    assert message.startswith("Candela: BDPT does not apply")
+    for part in ("Max Bounces > Glossy 4", "Clamping > Indirect Light 10", "Filter Glossy 1"):
+        assert part in message, message
+    settings.integrator = "PATH"                                 # PATH applies them: no warning
+    assert unsupported.light_paths_messages(settings) == []
+    settings.integrator = "IRRADIANCE_CACHE"
+    from candela import schema
+    published = {spec["key"] for spec in schema.integrator_params()["IRRADIANCE_CACHE"]}
+    assert bool(unsupported.light_paths_messages(settings)) == (not {"clamp_indirect", "glossy_bounces",
+                                                                      "filter_glossy"} <= published)

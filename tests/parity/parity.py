@@ -255,7 +255,11 @@ def write_summary(a, meta, rows, details, started, docs_dir=None):
           f"{settings['seeds'][0]} and {settings['seeds'][1]}), {settings['max_bounces']} bounces for every ray "
           f"type, caustics on, {settings['filter'].lower()} pixel filter {settings['filter_width']:g} px wide, no "
           "denoising, no adaptive sampling, no clamping, no light tree (Cycles 3.4 has none; Candela selects "
-          f"lights by `{settings['candela_light_selection']}`), Standard view transform.", "",
+          f"lights by `{settings['candela_light_selection']}`), Standard view transform." +
+          (f" `{a.integrator}` does not apply the path tracer's Light Paths limits and clamps (the add-on warns "
+           "when they are set), so the `*_cycles_defaults` scenes render without them on both engines: Cycles' "
+           "unbiased image of the same geometry is the reference (tests/parity/render_pair.py)"
+           if a.integrator != "PATH" else ""), "",
           f"Checks, per RGB channel: the image mean within {a.rel_image:.0%} and each of the {a.grid} × {a.grid} "
           f"block means within {a.rel_block:.0%} of "
           "Cycles', each widened by the measured noise: |Candela − Cycles| ≤ tol · max(Cycles, 5 % of the image "

@@ -45,6 +45,23 @@ def parse_args():
     return ap.parse_args(argv)
 
 
+def unbiased_light_paths(scene):
+    """Cycles' Light Paths without the limits and clamps (every bounce type up to Max Bounces, no clamp, no Filter
+    Glossy), on both engines: the reference for an integrator that does not apply those settings (it does not
+    publish them: its image is the full solution, and the add-on warns when they are set)."""
+    c, p = scene.cycles, scene.candela
+    for key in ("diffuse_bounces", "glossy_bounces", "transmission_bounces"):
+        setattr(c, key, c.max_bounces)
+        setattr(p, key, 1024)
+    c.sample_clamp_direct = c.sample_clamp_indirect = c.blur_glossy = 0.0
+    p.clamp_direct = p.clamp_indirect = p.filter_glossy = 0.0
+
+
+def applies_light_paths(integrator):
+    from candela import schema
+    return "clamp_indirect" in {spec["key"] for spec in schema.integrator_params().get(integrator, [])}
+
+
 def mirror_settings(scene, seed, integrator="PATH"):
     """The settings both engines must share beyond examples/cornell_box.configure_* (which set bounces etc.)."""
     c = scene.cycles
@@ -59,6 +76,8 @@ def mirror_settings(scene, seed, integrator="PATH"):
     p.seed = seed
     p.use_animated_seed = False
     p.integrator = integrator
+    if not applies_light_paths(integrator):
+        unbiased_light_paths(scene)
     if integrator == "PATH":  # the other integrators choose lights their own way (or publish the same setting)
         p.light_selection = CANDELA_LIGHT_SELECTION
     p.clamp_indirect = c.sample_clamp_indirect   # 0 but in the *_cycles_defaults scenes (parity_scenes.py)
