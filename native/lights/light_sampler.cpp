@@ -65,6 +65,18 @@ inline float child_prob(float c0, float c1, int which) {
     return which == 0 ? p0 : 1.f - p0;
 }
 
+// Cluster thresholds (see light_sampler.h, TREE). Sampling a cluster's leaves ∝ flux φ_i instead of ∝ their
+// importances w_i·φ_i costs that light's share of the variance a factor E_φ[w²]/E_φ[w]², while every level of
+// descent saved is two importance evaluations (about a quarter of a path vertex's cost on a tessellated emitter).
+// Distance: with the bounding sphere within asin τ_d of p, w's 1/d² spans ((1 − τ_d)/(1 + τ_d))², a factor ≤ 1.03
+// at τ_d = 0.15. Orientation: one-sided emitters behind their normal cone get w = 0, so a one-sided node clusters
+// only if its normals spread ≤ θ_c = 0.6 rad. Two-sided emitters (emissive triangles) fold the cosine, |cos|, and
+// cluster at any spread: for a closed tessellated surface the |cos| weighting the descent would find costs at most
+// E[cos²]/E[|cos|]² = 4/3 (a sphere), and its back half is occluded anyway. Measured on Veach's MIS scene
+// (docs/sampling.md): the same noise as the full descent within a few per cent at 0.58× its time.
+constexpr float k_cluster_sin = 0.15f;      // τ_d: the node's bounding sphere radius over its distance
+constexpr float k_cluster_cos_o = 0.8253f;  // cos θ_c, θ_c = 0.6 rad (one-sided nodes)
+
 }  // namespace
 
 TreeLightSampler::TreeLightSampler(const LightSet& lights) {
@@ -84,6 +96,7 @@ TreeLightSampler::TreeLightSampler(const LightSet& lights) {
     if (!items.empty()) {
         m_nodes.reserve(2 * items.size());
         build(items, 0, items.size(), ~0u, 1);
+        index_leaves();
     }
     const size_t n_inf = m_infinite.size();
     m_p_infinite = n_inf == 0 ? 0.f : float(n_inf) / float(n_inf + (m_nodes.empty() ? 0 : 1));
@@ -167,6 +180,51 @@ uint32_t TreeLightSampler::build(std::vector<std::pair<uint32_t, LightBounds>>& 
     return node_index;
 }
 
+void TreeLightSampler::index_leaves() {
+    // Nodes are stored in preorder (a node's first child follows it), so leaves in index order are depth-first
+    // and every subtree's leaves are one contiguous run of ranks.
+    m_rank_of_light.assign(m_leaf_of_light.size(), ~0u);
+    m_light_of_rank.clear();
+    m_flux_prefix.assign(1, 0.0);
+    for (Node& nd : m_nodes) {
+        if (!nd.leaf) continue;
+        nd.first_leaf = uint32_t(m_light_of_rank.size());
+        m_rank_of_light[nd.index] = nd.first_leaf;
+        m_light_of_rank.push_back(nd.index);
+        m_flux_prefix.push_back(m_flux_prefix.back() + double(nd.lb.phi));
+    }
+    for (size_t i = m_nodes.size(); i-- > 0;) {  // children after parents: fill interior ranges bottom-up
+        Node& nd = m_nodes[i];
+        if (nd.leaf) continue;
+        const Node &a = m_nodes[i + 1], &b = m_nodes[nd.index];
+        nd.first_leaf = a.first_leaf;
+        nd.leaf_count = a.leaf_count + b.leaf_count;
+        nd.narrow = nd.lb.two_sided || nd.lb.cos_theta_o >= k_cluster_cos_o;
+    }
+}
+
+bool TreeLightSampler::is_cluster(uint32_t node, const LightSampleContext& ctx) const {
+    const Node& nd = m_nodes[node];
+    if (!nd.narrow) return false;
+    const LightImportance& im = nd.importance;
+    return length_squared(ctx.p - im.centre) * (k_cluster_sin * k_cluster_sin) > im.radius2;
+}
+
+uint32_t TreeLightSampler::pick_in_cluster(const Node& node, float u, float* pmf) const {
+    const double lo = m_flux_prefix[node.first_leaf], hi = m_flux_prefix[node.first_leaf + node.leaf_count];
+    const double target = lo + double(u) * (hi - lo);
+    const auto begin = m_flux_prefix.begin() + node.first_leaf + 1;
+    const auto it = std::upper_bound(begin, begin + (node.leaf_count - 1), target);
+    const auto rank = uint32_t(it - m_flux_prefix.begin()) - 1;
+    *pmf = cluster_pmf(node, rank);
+    return rank;
+}
+
+float TreeLightSampler::cluster_pmf(const Node& node, uint32_t rank) const {
+    const double lo = m_flux_prefix[node.first_leaf], hi = m_flux_prefix[node.first_leaf + node.leaf_count];
+    return float((m_flux_prefix[rank + 1] - m_flux_prefix[rank]) / (hi - lo));
+}
+
 void TreeLightSampler::child_importances(uint32_t node, const LightSampleContext& ctx, float* c0, float* c1) const {
     const Node& a = m_nodes[node + 1];
     const Node& b = m_nodes[m_nodes[node].index];
@@ -197,6 +255,12 @@ uint32_t TreeLightSampler::select(const LightSampleContext& ctx, float u, float*
         if (nd.leaf) {
             *pmf = p;
             return nd.index;
+        }
+        if (is_cluster(node, ctx)) {
+            float in_cluster;
+            const uint32_t rank = pick_in_cluster(nd, u, &in_cluster);
+            *pmf = p * in_cluster;
+            return m_light_of_rank[rank];
         }
         float c0, c1;
         child_importances(node, ctx, &c0, &c1);
@@ -236,6 +300,7 @@ float TreeLightSampler::pmf(const LightSampleContext& ctx, uint32_t light) const
     float p = 1.f - m_p_infinite;
     for (int i = len - 1; i > 0; --i) {
         const uint32_t nd = at(i), child = at(i - 1);
+        if (is_cluster(nd, ctx)) return p * cluster_pmf(m_nodes[nd], m_rank_of_light[light]);
         float c0, c1;
         child_importances(nd, ctx, &c0, &c1);
         p *= child_prob(c0, c1, child == nd + 1 ? 0 : 1);

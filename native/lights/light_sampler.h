@@ -11,8 +11,14 @@
 //   POWER    — ∝ flux (light_power), the LightSet's own distribution.
 //   TREE     — a light BVH (Conty & Kulla 2018 / pbrt-v4) over every finite light; a stochastic descent
 //              from (p, n) picks a child ∝ its importance (∝ flux where both children's importance is 0, so the
-//              pmf always sums to one and every finite light with φ > 0 stays reachable). Infinite lights (sun, world) stay outside the tree
-//              with a fixed share: each gets 1/(n_inf + 1) (pbrt-v4), the tree the rest.
+//              pmf always sums to one and every finite light with φ > 0 stays reachable). Infinite lights (sun,
+//              world) stay outside the tree with a fixed share: each gets 1/(n_inf + 1) (pbrt-v4), the tree the
+//              rest. The descent stops early at a *cluster*: a node small as seen from p (bounding sphere within
+//              a cone of half-angle asin τ_d) whose emitters are two-sided or face nearly one way (normal
+//              spread ≤ θ_c). Below it the leaves' importances differ by distance and cosine factors that vary
+//              little over it, so the descent would mostly reproduce the flux ratios: a light is picked ∝ flux
+//              among the node's leaves (prefix sums, one binary search). A tessellated emitter seen from afar is
+//              one cluster instead of a 12-level descent (the thresholds and their cost: light_sampler.cpp).
 //   WARD     — Ward 1991: per-point upper bounds of every light's contribution. select() picks ∝ bound;
 //              candidates(ctx) returns the lights sorted by decreasing bound for adaptive shadow testing.
 // Samplers keep a pointer to the LightSet they were built from: it must outlive them.
@@ -76,7 +82,9 @@ public:
         LightImportance importance;  // lb prepared for queries
         uint32_t index = 0;          // leaf: light index; interior: second child (the first is this node + 1)
         uint32_t parent = ~0u;
+        uint32_t first_leaf = 0, leaf_count = 1;  // the node's leaves, ranks in depth-first order
         bool leaf = false;
+        bool narrow = false;  // interior node that may be a cluster: two-sided, or normal spread ≤ θ_c
     };
 
     TreeLightSampler() = default;
@@ -91,13 +99,23 @@ public:
     float infinite_share() const { return m_p_infinite; }
     int depth() const { return m_depth; }
 
+    /// Whether the descent stops at interior node `node` for ctx and picks among its leaves ∝ flux.
+    bool is_cluster(uint32_t node, const LightSampleContext& ctx) const;
+
 private:
     void child_importances(uint32_t node, const LightSampleContext& ctx, float* c0, float* c1) const;
+    void index_leaves();
+    /// Leaf rank picked ∝ flux within `node`'s leaves by u, and its probability there.
+    uint32_t pick_in_cluster(const Node& node, float u, float* pmf) const;
+    float cluster_pmf(const Node& node, uint32_t rank) const;
     uint32_t build(std::vector<std::pair<uint32_t, LightBounds>>& items, size_t begin, size_t end, uint32_t parent,
                    int depth);
 
     std::vector<Node> m_nodes;
     std::vector<uint32_t> m_leaf_of_light;  // node index, ~0u if the light is not in the tree
+    std::vector<uint32_t> m_light_of_rank;  // light index by depth-first leaf rank
+    std::vector<uint32_t> m_rank_of_light;  // the inverse (~0u outside the tree)
+    std::vector<double> m_flux_prefix;      // Σ flux of the leaves of rank < r, size leaves + 1
     std::vector<uint32_t> m_infinite;       // sun and world lights
     std::vector<bool> m_is_infinite;
     float m_p_infinite = 0.f;

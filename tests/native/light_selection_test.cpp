@@ -298,9 +298,11 @@ TEST(LightSelectionTree, FavoursFacingLightsAndSkipsBackFacingOnes) {
     EXPECT_NEAR(facing, 1.0, 1e-5);
     EXPECT_EQ(away, 0.0);  // lights below z = 0 face −z, away from the point: they cannot contribute
 
+    // Twenty triangles: neighbours 2.5 apart, so no node of a facing and an edge-on triangle is small enough as seen
+    // from the centre to be a cluster (where the tree picks ∝ flux: ClustersPickByFlux below).
     LightSet tris;
-    for (int i = 0; i < 200; ++i) {
-        const float a = 2 * k_pi * i / 200.f;
+    for (int i = 0; i < 20; ++i) {
+        const float a = 2 * k_pi * i / 20.f;
         const Vec3 c = Vec3(std::cos(a), std::sin(a), 0.f) * 8.f;  // a ring around the point
         const Vec3 radial = normalize(c), up(0, 0, 1), tangent = cross(up, radial);
         if (i % 2 == 0)  // facing the point: spanned by the tangent and up
@@ -315,6 +317,64 @@ TEST(LightSelectionTree, FavoursFacingLightsAndSkipsBackFacingOnes) {
     for (uint32_t i = 0; i < tris.size(); ++i) (i % 2 == 0 ? face : edge) += t2.pmf(c2, i);
     std::printf("tree: facing triangles %.3f, edge-on %.3f\n", face, edge);
     EXPECT_GT(face, 2 * edge);
+}
+
+/// A UV sphere of two-sided emissive triangles (an emissive mesh), radius r at c, radiance L.
+void add_tessellated_sphere(LightSet& set, Vec3 c, float r, float L, int segments, int rings) {
+    auto at = [&](int i, int j) {
+        const float phi = 2 * k_pi * float(i) / float(segments), theta = k_pi * float(j) / float(rings);
+        return c + Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)) * r;
+    };
+    for (int j = 0; j < rings; ++j)
+        for (int i = 0; i < segments; ++i) {
+            if (j > 0) set.add(tri_light(at(i, j), at(i, j + 1), at(i + 1, j), L));
+            if (j + 1 < rings) set.add(tri_light(at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), L));
+        }
+}
+
+TEST(LightSelectionTree, ClustersPickByFluxWhereTheyAreSmallAsSeenFromThePoint) {
+    // Two tessellated spheres (two-sided triangles of unequal areas: the poles' are small). Seen from afar each
+    // sphere is a cluster: within it the tree's pmf is exactly ∝ flux (area × radiance), as POWER's. Seen from close
+    // by, the descent goes on and favours the near triangles. Fails without clusters (the far pmf then weighs
+    // |cos| and 1/d²) and with clusters that ignore the distance rule (the near pmf would be ∝ flux too).
+    LightSet set;
+    add_tessellated_sphere(set, Vec3(0.f), 1.f, 2.f, 24, 12);
+    const auto first_sphere = uint32_t(set.size());
+    add_tessellated_sphere(set, Vec3(30.f, 0.f, 0.f), 1.f, 5.f, 24, 12);
+    set.finalize(40.f);
+    const LightSampler tree = make_light_sampler("TREE", set);
+    auto worst_deviation_from_flux = [&](const LightSampleContext& ctx) {
+        double sum_pmf = 0, sum_flux = 0;
+        for (uint32_t i = 0; i < first_sphere; ++i) {
+            sum_pmf += tree.pmf(ctx, i);
+            sum_flux += std::get<TriangleLight>(set[i]).area;
+        }
+        double worst = 0;
+        for (uint32_t i = 0; i < first_sphere; ++i) {
+            const double share = tree.pmf(ctx, i) / sum_pmf, flux = std::get<TriangleLight>(set[i]).area / sum_flux;
+            worst = std::max(worst, std::fabs(share / flux - 1.0));
+        }
+        return worst;
+    };
+    const LightSampleContext far{Vec3(0.f, 12.f, 3.f), normalize(Vec3(0.f, -1.f, 0.f))};   // sphere within 4.6°
+    const LightSampleContext near{Vec3(0.f, 2.5f, 0.f), normalize(Vec3(0.f, -1.f, 0.f))};  // within 24°
+    const double far_dev = worst_deviation_from_flux(far), near_dev = worst_deviation_from_flux(near);
+    std::printf("tree within a sphere: pmf/flux share deviates by %.2g seen from afar, %.2g from close by\n", far_dev,
+                near_dev);
+    EXPECT_LT(far_dev, 1e-4);
+    EXPECT_GT(near_dev, 0.3);
+    for (const LightSampleContext& ctx : {far, near}) {  // and still a valid pmf, sampled as evaluated
+        double sum = 0;
+        for (uint32_t i = 0; i < set.size(); ++i) sum += tree.pmf(ctx, i);
+        EXPECT_NEAR(sum, 1.0, 1e-4);
+        Pcg32 rng(5, 6);
+        for (int k = 0; k < 4000; ++k) {
+            float pmf;
+            const uint32_t i = tree.select(ctx, rng.next_float(), &pmf);
+            ASSERT_GT(pmf, 0.f);
+            ASSERT_EQ(pmf, tree.pmf(ctx, i));
+        }
+    }
 }
 
 TEST(LightSelectionTree, InfiniteLightsGetAFixedShare) {
