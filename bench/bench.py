@@ -73,6 +73,8 @@ def parse_args():
     ap.add_argument("--export-triangles", type=int, default=1_000_000, help="triangles of the export-speed mesh")
     ap.add_argument("--instances", type=int, default=1000, help="instances for the instancing-memory check")
     ap.add_argument("--no-export", action="store_true", help="skip the export numbers")
+    ap.add_argument("--no-scenes", action="store_true", help="skip the per-scene speed table (bench/scene_speed.py)")
+    ap.add_argument("--scene-size", type=int, default=128, help="width of the per-scene speed renders (default 128)")
     return ap.parse_args()
 
 
@@ -470,6 +472,16 @@ def main():
             print(tail(out))
     lt_share = lt_rate / raw if lt_rate and raw else None
 
+    # 4d. Samples per second on every accuracy scene (issue 22: the speed table), paired as above.
+    scene_rows = []
+    if "CYCLES" in engines and "CANDELA" in engines and not a.no_scenes:
+        import scene_speed
+        scene_rows = scene_speed.scene_speed(
+            sys.modules[__name__], launcher, outdir, threads, size=a.scene_size, rounds=max(2, min(a.rounds, 3)),
+            equal_config="CANDELA:light_selection=POWER,rr_mode=SQRT_THROUGHPUT,"
+                         f"rr_start_bounce={CYCLES_MIN_LIGHT_BOUNCES + 2}")
+        report["scenes"] = scene_rows
+
     # 5. Results.
     cyc, can = report["engines"].get("CYCLES"), report["engines"].get("CANDELA")
     cyc_rate, can_rate = rate(cyc, s1, s2), rate(can, s1, s2)
@@ -567,6 +579,10 @@ def main():
           f"{LT_SHARE_TARGET:.0%}   {verdict(None if lt_share is None else lt_share >= LT_SHARE_TARGET)}")
     if export:
         for line in export_lines(export, a.instances, report):
+            print(line)
+    if scene_rows:
+        import scene_speed
+        for line in scene_speed.table_lines(scene_rows):
             print(line)
     if report["errors"]:
         print("errors: " + "; ".join(report["errors"]))

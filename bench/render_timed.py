@@ -49,6 +49,8 @@ def _args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     ap = argparse.ArgumentParser(prog="render_timed.py")
     ap.add_argument("--blend", default=None, help=".blend to open (default: build the Cornell box in memory)")
+    ap.add_argument("--scene", default=None,
+                    help="build this scene of examples/scenes.py in memory instead (--size: its width)")
     ap.add_argument("--config", action="append", required=True, metavar="NAME=ENGINE[:KEY=VALUE,...]",
                     help="a configuration to time; repeatable (several configurations alternate round by round)")
     ap.add_argument("--samples", required=True, help="comma-separated sample counts, e.g. 64,320")
@@ -242,6 +244,10 @@ def main():
     if a.blend:
         bpy.ops.wm.open_mainfile(filepath=os.path.abspath(a.blend))
         scene = bpy.context.scene
+    elif a.scene:
+        import scenes
+        scene = scenes.build(a.scene, bpy.context.scene, size=a.size or 128, samples=counts[0], threads=a.threads)
+        a.size = 0   # keep the scene's own aspect (configure_render below would make it square)
     else:
         import cornell_box
         scene = cornell_box.build_cornell_box(size=a.size or 256)

@@ -39,7 +39,7 @@ def report(tmp_path_factory):
     out = tmp_path_factory.mktemp("bench")
     cmd = [sys.executable, os.path.join(ROOT, "bench", "bench.py"), "--build", build, "--outdir", str(out),
            "--size", "48", "--samples", "8", "--rounds", "2", "--rays", "200000",
-           "--export-triangles", "20000", "--instances", "20"]
+           "--export-triangles", "20000", "--instances", "20", "--scene-size", "24"]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     with open(out / "bench.json") as f:
@@ -60,6 +60,16 @@ def test_every_stage_reports(report):
     assert rep["export"]["export"]["best"]["triangles"] == 20000
     assert "paired speed ratio" in stdout
     assert "light tracer share of raw" in stdout
+    # The per-scene speed table: every accuracy scene, all three configurations measured.
+    assert "per-scene samples/s" in stdout
+    assert [r["scene"] for r in rep["scenes"]] == ["cornell_box", "soft_shadow", "veach_mis", "glossy", "room_window",
+                                                   "caustic", "door"]
+    for row in rep["scenes"]:
+        assert "error" not in row, row
+        assert row["width"] == 24 and row["height"] > 0, row
+        # Rates come from time differences of tiny renders here: timing noise may leave one unmeasurable (None).
+        for key in ("cycles", "candela", "candela_equal", "default_ratio", "equal_ratio"):
+            assert row[key] is None or row[key] > 0, (row["scene"], key)
 
 
 def test_the_equal_run_uses_cycles_light_selection_and_roulette(report):
