@@ -125,7 +125,7 @@ class RenderRecord:
 
     def __init__(self, publish=True):
         self.warnings = []
-        self.info = []      # Info-level log lines (INFO_PREFIXES)
+        self.info = []      # Info-level log lines (log_entries)
         self.publish = publish   # final renders publish last_render_stats; previews do not
 
 
@@ -136,16 +136,19 @@ def _warn(engine, message, record):
     engine.report({'WARNING'}, message)
 
 
-# Native log lines that inform rather than warn (what the scene lets the integrators skip, AUTO's features, pilot and
-# choice — the choice is in the status line too): Info reports, kept out
-# of the warnings and the status line.
-INFO_PREFIXES = ("Skipped, the scene does not need them", "Auto: ")
+def log_entries(session):
+    """[(level, message), ...] of what the native side logged since the last call: level "INFO" for what the
+    renderer did (what the scene lets it skip, AUTO's analysis and choice, cache sizes), "WARNING" for what may make
+    the image differ from what the user expects (core/message_log.h). Stand-ins without levels log warnings."""
+    take = getattr(session, "take_log_entries", None)
+    if take is None:
+        return [("WARNING", message) for message in session.take_log()]
+    return [(str(level), str(message)) for level, message in take()]
 
 
 def _forward_log(engine, session, record):
-    for entry in session.take_log():
-        message = entry[-1] if isinstance(entry, (tuple, list)) else entry
-        if message.startswith(INFO_PREFIXES):
+    for level, message in log_entries(session):
+        if level == "INFO":
             record.info.append(message)
             engine.report({'INFO'}, f"Candela: {message}")
         else:

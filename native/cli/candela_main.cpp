@@ -74,7 +74,10 @@ int main(int argc, char** argv) {
         }
         session.join();
         if (!quiet) std::fprintf(stderr, "\n");
-        for (const auto& w : session.take_log()) std::cerr << "warning: " << w << "\n";
+        for (const auto& e : session.take_log_entries()) {
+            if (e.level == candela::LogLevel::Info && quiet) continue;
+            std::cerr << (e.level == candela::LogLevel::Info ? "info: " : "warning: ") << e.message << "\n";
+        }
         if (auto err = session.error()) {
             std::cerr << "error: " << *err << "\n";
             return 1;

@@ -104,11 +104,15 @@ struct RenderContext {
     RenderCounters& counters;
     int threads = 0;
     AovFilm* aovs = nullptr;         // data passes to write (camera-driven integrators), or none
-    MessageLog* messages = nullptr;  // where log() goes (Session::take_log), or nowhere
+    MessageLog* messages = nullptr;  // where log() and info() go (Session::take_log_entries), or nowhere
 
-    /// A line for the user's log (Blender's Info editor and status bar).
+    /// A warning for the user's log (Blender's Info editor and status bar): the image may not be what they expect.
     void log(std::string message) const {
-        if (messages) messages->add(std::move(message));
+        if (messages) messages->add(LogLevel::Warning, std::move(message));
+    }
+    /// An info line: what the renderer did (its choices, what it skipped, cache sizes).
+    void info(std::string message) const {
+        if (messages) messages->add(LogLevel::Info, std::move(message));
     }
 };
 

@@ -105,6 +105,13 @@ std::unique_ptr<Session> make_session(const py::dict& arrays_dict, const py::dic
 }
 
 /// A published setting as the add-on builds its property from it (core/param_spec.h).
+/// [(level, message), ...], level "INFO" or "WARNING" (core/message_log.h).
+py::list log_entries(const std::vector<LogEntry>& entries) {
+    py::list out;
+    for (const auto& e : entries) out.append(py::make_tuple(log_level_name(e.level), e.message));
+    return out;
+}
+
 py::dict spec_dict(const ParamSpec& s) {
     py::dict d;
     d["key"] = s.key;
@@ -392,6 +399,7 @@ PYBIND11_MODULE(_native, m) {
              })
         .def("get_pass", &get_pass, py::arg("name"))
         .def("take_log", &Session::take_log)
+        .def("take_log_entries", [](Session& s) { return log_entries(s.take_log_entries()); })
         .def_property_readonly("error", &Session::error)
         .def_property_readonly("width", &Session::width)
         .def_property_readonly("height", &Session::height);
@@ -416,5 +424,6 @@ PYBIND11_MODULE(_native, m) {
         .def("image_request", &ViewportSession::image_request)
         .def("image", &viewport_image, py::arg("since") = 0)
         .def("status", &viewport_status)
-        .def("take_log", &ViewportSession::take_log);
+        .def("take_log", &ViewportSession::take_log)
+        .def("take_log_entries", [](ViewportSession& s) { return log_entries(s.take_log_entries()); });
 }

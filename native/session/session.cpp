@@ -114,7 +114,7 @@ void Session::run() {
         const std::string integrator = m_params.get<std::string>("integrator", "PATH");
         if (integrator != "AUTO") {
             const std::string skipped = scene_skips_line(scene_skips(integrator, scene));
-            if (!skipped.empty()) m_log.add(skipped);
+            if (!skipped.empty()) m_log.add(LogLevel::Info, skipped);
         }
         RenderContext ctx{m_cancel, m_counters, m_threads, m_aovs.get(), &m_log};
         m_integrator->render(scene, *m_film, ctx);
@@ -198,6 +198,7 @@ std::optional<std::string> Session::error() const {
 }
 
 std::vector<std::string> Session::take_log() { return m_log.take(); }
+std::vector<LogEntry> Session::take_log_entries() { return m_log.take_entries(); }
 
 void Session::add_log(std::string message) { m_log.add(std::move(message)); }
 

@@ -66,6 +66,8 @@ public:
     SessionStats stats() const;
     std::optional<std::string> error() const;
     std::vector<std::string> take_log();
+    /// The same lines with their levels (the add-on shows warnings and info lines differently).
+    std::vector<LogEntry> take_log_entries();
     /// Adds a warning for take_log() (the boundary reports what it ignored).
     void add_log(std::string message);
 

@@ -351,5 +351,6 @@ ViewportStatus ViewportSession::status() const {
 }
 
 std::vector<std::string> ViewportSession::take_log() { return m_log.take(); }
+std::vector<LogEntry> ViewportSession::take_log_entries() { return m_log.take_entries(); }
 
 }  // namespace candela

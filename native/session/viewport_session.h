@@ -97,6 +97,7 @@ public:
     bool image(uint64_t since, ViewportImage* out) const;
     ViewportStatus status() const;
     std::vector<std::string> take_log();
+    std::vector<LogEntry> take_log_entries();
 
 private:
     struct Request;

@@ -72,6 +72,30 @@ def test_unknown_params_are_reported(native):
     assert any("smaples" in line for line in s.take_log())
 
 
+def test_log_entries_tell_info_lines_from_warnings(native):
+    # The box has no Transparent material: the session says what it skips (info), and warns of the unknown key.
+    s = render(native, box_scene(), params(smaples=4))
+    entries = s.take_log_entries()
+    assert all(level in ("INFO", "WARNING") for level, _ in entries)
+    warnings = [m for level, m in entries if level == "WARNING"]
+    info = [m for level, m in entries if level == "INFO"]
+    assert any("smaples" in m for m in warnings), entries
+    assert any(m.startswith("Skipped, the scene does not need them") for m in info), entries
+    assert not any("Skipped" in m for m in warnings), entries
+    assert s.take_log_entries() == [] and s.take_log() == []   # drained
+
+
+def test_cli_prints_info_lines_as_info_and_leaves_them_out_with_q(native, tmp_path):
+    write_dump(tmp_path / "dump", box_scene(), params(threads=1, smaples=4))
+    cli = [str(BUILD / "bin" / "candela"), str(tmp_path / "dump"), "-o", str(tmp_path / "out.exr")]
+    loud = subprocess.run(cli, capture_output=True, text=True, timeout=60)
+    quiet = subprocess.run(cli + ["-q"], capture_output=True, text=True, timeout=60)
+    assert loud.returncode == 0 and quiet.returncode == 0, loud.stderr + quiet.stderr
+    assert "info: Skipped, the scene does not need them" in loud.stderr
+    assert "warning: Skipped" not in loud.stderr and "Skipped" not in quiet.stderr
+    assert "smaples" in quiet.stderr   # warnings stay
+
+
 def test_unknown_arrays_are_reported(native):
     arrays = box_scene()
     arrays["positons"] = np.zeros((1, 3), np.float32)

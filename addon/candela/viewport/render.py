@@ -19,6 +19,7 @@ import bpy
 from .. import native, schema
 from ..export import ExportError, Warnings, export_scene
 from ..params import integrator_params, to_native_params
+from ..render_loop import log_entries
 from ..unsupported import ignored_settings
 from .display import Display
 from .scene_sync import ImageCache, MeshCache, classify, instance_signature
@@ -156,8 +157,9 @@ class ViewportRender:
             return
         try:
             self.engine.is_preview   # raises ReferenceError once Blender freed the engine (even if idle)
-            for message in self.session.take_log():
-                self._warn(f"Candela: {message}")
+            for level, message in log_entries(self.session):
+                if level != "INFO":   # what the renderer did stays out of the viewport's header
+                    self._warn(f"Candela: {message}")
             note = self.session.status().get("note")
             if note:   # the native fallback to PATH for this view's camera: reported once, like the settings'
                 self._warn(f"Candela: {note}")

@@ -41,15 +41,15 @@ public:
         const AutoChoice choice = choose_integrator(features, &in_registry);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         ctx.counters.stage.end();
-        ctx.log(features.summary());
-        ctx.log(features.pilot.summary());
+        ctx.info(features.summary());
+        ctx.info(features.pilot.summary());
         char took[96];
         std::snprintf(took, sizeof took, " (rule %s; analysis %.1f ms, of which pilot %.1f ms)", choice.rule.c_str(),
                       ms, features.pilot.milliseconds);
-        ctx.log("Auto: chose " + choice.integrator + " \xe2\x80\x94 " + choice.reason + took);
+        ctx.info("Auto: chose " + choice.integrator + " \xe2\x80\x94 " + choice.reason + took);
         ctx.counters.method.set("Auto: " + choice.integrator + " \xe2\x80\x94 " + choice.reason);
         const std::string skipped = scene_skips_line(scene_skips(choice.integrator, scene));
-        if (!skipped.empty()) ctx.log(skipped);
+        if (!skipped.empty()) ctx.info(skipped);
         std::unique_ptr<Integrator> chosen = find_integrator(choice.integrator).create(m_params);
         const std::string note = unhonoured_features_note(choice.integrator, chosen->honoured_features(), scene);
         if (!note.empty()) ctx.log(note);
