@@ -40,6 +40,10 @@ public:
     }
     /// The same with or without the gradient terms (whatever the rules say: tests compare both on one record set).
     bool interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E, int* records_used = nullptr) const;
+    /// The same interpolation over a list of records outside the cache (a pixel's own records of this pass:
+    /// ic_tracer.cpp), with these rules.
+    static bool interpolate_list(const std::vector<IcRecord>& records, const IcCacheRules& rules, const Vec3& x,
+                                 const Vec3& n, Color* E);
     /// Whether some record is usable at (x, n).
     bool covered(const Vec3& x, const Vec3& n) const;
 

@@ -25,9 +25,23 @@ constexpr float k_inf = std::numeric_limits<float>::infinity();
 
 thread_local std::vector<IcRecord>* t_sink = nullptr;
 
+// In-pass reuse: the records the current pixel's samples made in this pass, which its later samples of the pass
+// read where the frozen cache has none (a pass's samples of one pixel run in a fixed order on one thread, so what
+// a sample sees depends neither on the threads nor on the tiles). Without it every sample of a pass that lands in
+// a gap between the cache's records would gather its own record there, and the merge keep one.
+struct PixelRecords {
+    int px = -1, py = -1;
+    std::vector<IcRecord> records;
+};
+thread_local PixelRecords t_pixel;
+
 }  // namespace
 
-void IcTracer::set_sink(std::vector<IcRecord>* sink) { t_sink = sink; }
+void IcTracer::set_sink(std::vector<IcRecord>* sink) {
+    t_sink = sink;
+    t_pixel.px = t_pixel.py = -1;
+    t_pixel.records.clear();
+}
 
 IcTracer::IcTracer(const Scene& scene, const IcSettings& settings, const LightSampler& light_sampler,
                    const IcCache& cache, const PixelFootprint& footprint, const CancelToken& cancel,
@@ -80,6 +94,13 @@ void IcTracer::add_world_emission(const Ray& ray, const PathState& st, Color& L)
         add_emission(st, lights.background(), 0.f, L);  // a constant world: never light-sampled, weight 1
 }
 
+bool IcTracer::only_light_emission(const PathState& st, const SurfaceHit& hit) const {
+    // With β = 0 (the cache served every lobe at the ray's origin) the ray counts only the emission of a light
+    // next-event estimation samples (β_emit, add_emission); a surface that is no light adds β·L_e = 0 and the path
+    // ends there, so its shading need not be evaluated.
+    return hit.light < 0 && is_black(st.beta);
+}
+
 void IcTracer::poll_gather() const {
     if (m_probe && m_probe->on_gather_ray) m_probe->on_gather_ray(m_stage);
     if (m_cancel.cancelled()) throw Cancelled();
@@ -110,12 +131,24 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
         if (m_cache.interpolate(hit.p, v.frame.n, &E)) {
             cached = true;
         } else if (policy == CachePolicy::Create) {
-            IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key, stats);
-            rec.pixel_x = px;
-            rec.pixel_y = py;
-            E = rec.E;  // its value at its own point: what the cache would give here once it holds it
-            cached = true;
-            if (t_sink) t_sink->push_back(rec);
+            if (t_pixel.px != px || t_pixel.py != py) {
+                t_pixel.px = px;
+                t_pixel.py = py;
+                t_pixel.records.clear();
+            }
+            if (IcCache::interpolate_list(t_pixel.records, m_cache.rules(), hit.p, v.frame.n, &E)) {
+                cached = true;
+            } else {
+                IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key, stats);
+                rec.pixel_x = px;
+                rec.pixel_y = py;
+                E = rec.E;  // its value at its own point: what the cache would give here once it holds it
+                cached = true;
+                if (t_sink) {
+                    t_sink->push_back(rec);
+                    t_pixel.records.push_back(rec);
+                }
+            }
         }
     }
 
@@ -129,7 +162,9 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
 
     // Direct light over the whole BSDF, next-event estimation and BSDF sampling combined by MIS exactly as PATH
     // (common/direct_light.h); the BSDF-sampled half is the continuation ray below, which therefore always
-    // leaves, whichever lobe it samples.
+    // leaves, whichever lobe it samples. (Next-event estimation alone where the cache served every lobe would save
+    // that ray, but doubled the Cornell box's relative RMSE at 256 samples: the ceiling beside the light, where
+    // light sampling alone is poor, carries most of the squared error.)
     const LightSampleContext ctx{hit.p, v.ns};
     int ward_tested = 0;
     if (nee_here) {
@@ -225,6 +260,7 @@ void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats,
             return;
         }
         if (bounce == 0 && !camera_hit(m_scene, ray, hit, aov, alpha)) return;  // data passes, holdout
+        if (only_light_emission(st, hit)) return;
         const ShadingPoint sp = m_scene.shade(hit, -ray.d);
         if (!is_black(sp.emission))
             add_emission(st, sp.emission, hit.light >= 0 ? emitter_pdf(st, hit.light, ray.d, hit.t) : 0.f, L);
@@ -258,6 +294,7 @@ Color IcTracer::trace_gather(const Ray& first_ray, const PathState& start, uint6
             return L;
         }
         if (bounce == 1) *distance = hit.t;
+        if (only_light_emission(st, hit)) return L;
         const ShadingPoint sp = m_scene.shade(hit, -ray.d);
         if (!is_black(sp.emission))
             add_emission(st, sp.emission, hit.light >= 0 ? emitter_pdf(st, hit.light, ray.d, hit.t) : 0.f, L);

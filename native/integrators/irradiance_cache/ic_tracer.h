@@ -112,6 +112,8 @@ private:
     void add_area_light_emission(const Ray& ray, float t_surface, bool camera_ray, const PathState& st, Color& L) const;
     void add_world_emission(const Ray& ray, const PathState& st, Color& L) const;
     float emitter_pdf(const PathState& st, int32_t light, const Vec3& d, float t) const;
+    /// Whether the ray that found `hit` can bring back nothing more from it (no light there, β = 0).
+    bool only_light_emission(const PathState& st, const SurfaceHit& hit) const;
     void poll_gather() const;
 
     const Scene& m_scene;
