@@ -15,6 +15,7 @@
 //     bias (the documented bias here is 0).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <vector>
@@ -53,6 +54,32 @@ Rendered render_session(SceneArrays arrays, Params p) {
 
 double luminance_at(const std::vector<float>& rgba, size_t i) {
     return 0.2126 * rgba[4 * i] + 0.7152 * rgba[4 * i + 1] + 0.0722 * rgba[4 * i + 2];
+}
+
+// The pre-pass's grid: every pixel of a film (at any origin) is visited exactly once, at one stride and one
+// sub-pass, and the points of one sub-pass lie 2s apart along both axes (a multiple of 2s in each coordinate
+// difference), so none of them is a neighbour of another on its own grid.
+TEST(IrradianceCache, PrepassSubPassesVisitEveryPixelOnceAndSpreadOut) {
+    for (int top : {1, 2, 16, 64})
+        for (auto [x0, y0, w, h] : {std::array{0, 0, 37, 23}, std::array{5, 130, 70, 9}}) {
+            std::vector<int> visits(size_t(w) * h, 0);
+            for (int st = top; st >= 1; st /= 2)
+                for (int sub = 0; sub < 4; ++sub) {
+                    std::vector<std::pair<int, int>> points;
+                    for (int y = y0; y < y0 + h; ++y)
+                        for (int x = x0; x < x0 + w; ++x)
+                            if (ic_prepass_sub_pass(x, y, st, top) == sub) {
+                                ++visits[size_t(y - y0) * w + (x - x0)];
+                                points.push_back({x, y});
+                            }
+                    if (st < top) EXPECT_TRUE(sub < 3 || points.empty()) << "stride " << st;
+                    for (const auto& [x, y] : points) {
+                        ASSERT_EQ((x - points[0].first) % (2 * st), 0) << "stride " << st << " sub-pass " << sub;
+                        ASSERT_EQ((y - points[0].second) % (2 * st), 0) << "stride " << st << " sub-pass " << sub;
+                    }
+                }
+            for (size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i], 1) << "pixel " << i << ", top " << top;
+        }
 }
 
 TEST(IrradianceCache, EqualsPathAsTheErrorTendsToZero) {

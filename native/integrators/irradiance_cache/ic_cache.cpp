@@ -52,6 +52,19 @@ bool IcCache::interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E
                             m_rules.a, gradients, x, n, E, records_used);
 }
 
+bool IcCache::interpolate_among(const std::vector<uint32_t>& candidates, const Vec3& x, const Vec3& n, Color* E) const {
+    return ward_interpolate(
+        [&](auto&& use) {
+            for (uint32_t i : candidates) {
+                // The octree's test, the same operations in the same order (IcOctree::block_mask).
+                const IcRecord& r = m_records[i];
+                const float dx = r.p.x - x.x, dy = r.p.y - x.y, dz = r.p.z - x.z, rr = validity_radius(r) + 0.f;
+                if (dx * dx + dy * dy + dz * dz < rr * rr) use(r);
+            }
+        },
+        m_rules.a, m_rules.gradients, x, n, E, nullptr);
+}
+
 bool IcCache::interpolate_list(const std::vector<IcRecord>& records, const IcCacheRules& rules, const Vec3& x,
                                const Vec3& n, Color* E) {
     return ward_interpolate(

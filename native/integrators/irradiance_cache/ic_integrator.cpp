@@ -26,6 +26,20 @@ double ic_memory_bytes(const Params& params, double film_pixels) {
     return double(ic_record_capacity(IcSettings::from_params(params), film_pixels)) * double(k_ic_bytes_per_record);
 }
 
+/// The pre-pass's sub-pass of full-frame pixel (fx, fy) at stride s (coarsest: `top`), or -1 if it is not a grid
+/// point first visited at that stride. A level's points are split by the parity of their grid coordinates
+/// (fx/s, fy/s) into sub-passes, each reading the cache the earlier ones completed: first the points farthest from
+/// the points already visited — at a finer level the centres of the coarser grid's squares (odd, odd), then the
+/// midpoints of its edges (odd, even), (even, odd); at the coarsest, (0, 0), (1, 1), (1, 0), (0, 1) — so that
+/// neighbouring points of one level do not all gather where one record would have served them.
+int ic_prepass_sub_pass(int fx, int fy, int s, int top) {
+    if (fx % s != 0 || fy % s != 0) return -1;
+    const int ox = (fx / s) & 1, oy = (fy / s) & 1;
+    if (s == top) return ox == oy ? ox : 2 + oy;  // (0,0) 0, (1,1) 1, (1,0) 2, (0,1) 3
+    if (ox == 0 && oy == 0) return -1;            // a point of a coarser level
+    return ox && oy ? 0 : 1 + oy;                 // (1,1) 0, (1,0) 1, (0,1) 2
+}
+
 namespace {
 
 /// The coarsest pre-pass grid: the largest power of two ≤ the maximum spacing (at least 1, at most 64 pixels).
@@ -33,20 +47,6 @@ int coarsest_stride(float max_spacing) {
     int s = 1;
     while (s * 2 <= std::min(64.f, max_spacing)) s *= 2;
     return s;
-}
-
-/// The pre-pass's sub-pass of full-frame pixel (fx, fy) at stride s (coarsest: `top`), or -1 if it is not a grid
-/// point first visited at that stride. A level's points are split by the parity of their grid coordinates
-/// (fx/s, fy/s) into sub-passes, each reading the cache the earlier ones completed: first the points farthest from
-/// the points already visited — at a finer level the centres of the coarser grid's squares (odd, odd), then the
-/// midpoints of its edges (odd, even), (even, odd); at the coarsest, (0, 0), (1, 1), (1, 0), (0, 1) — so that
-/// neighbouring points of one level do not all gather where one record would have served them.
-int prepass_sub_pass(int fx, int fy, int s, int top) {
-    if (fx % s != 0 || fy % s != 0) return -1;
-    const int ox = (fx / s) & 1, oy = (fy / s) & 1;
-    if (s == top) return ox == oy ? ox : 2 + oy;  // (0,0) 0, (1,1) 1, (1,0) 2, (0,1) 3
-    if (ox == 0 && oy == 0) return -1;            // a point of a coarser level
-    return ox && oy ? 0 : 1 + oy;                 // (1,1) 0, (1,0) 1, (0,1) 2
 }
 
 constexpr int k_prepass_sub_passes = 4;  // at most, per level
@@ -202,7 +202,7 @@ private:
         aovs->set_pass("IC Records", std::move(count));
     }
 
-    /// The pre-pass: grids of stride 2^k, …, 2, 1 pixels, each level in sub-passes (prepass_sub_pass); at each point
+    /// The pre-pass: grids of stride 2^k, …, 2, 1 pixels, each level in sub-passes (ic_prepass_sub_pass); at each point
     /// the camera ray's first Lambertian surface gets a record where none of the earlier sub-passes' is usable. A
     /// sub-pass reads the cache as the earlier ones left it; its records are merged in raster order (merge). False
     /// if cancelled.
@@ -213,7 +213,7 @@ private:
         int64_t total = 0;
         for (int st = top; st >= 1; st /= 2)
             for (int y = 0; y < film.height(); ++y)
-                for (int x = 0; x < film.width(); ++x) total += prepass_sub_pass(x0 + x, y0 + y, st, top) >= 0;
+                for (int x = 0; x < film.width(); ++x) total += ic_prepass_sub_pass(x0 + x, y0 + y, st, top) >= 0;
         s.ctx.counters.stage.begin("Irradiance cache", total, /*percent=*/true);
         s.ctx.counters.stage.set_note("0 records");
         s.tracer.set_stage(IcStage::Prepass);
@@ -234,7 +234,7 @@ private:
                             for (int y = tile.y0; y < tile.y1 && !s.ctx.cancel.cancelled(); ++y)
                                 for (int x = tile.x0; x < tile.x1; ++x) {
                                     const int fx = x0 + x, fy = y0 + y;
-                                    if (prepass_sub_pass(fx, fy, st, top) != sub) continue;
+                                    if (ic_prepass_sub_pass(fx, fy, st, top) != sub) continue;
                                     ++points;
                                     const uint64_t key = hash_values(s.seed, uint64_t(st),
                                                                      (uint64_t(uint32_t(fy)) << 32) | uint32_t(fx));
