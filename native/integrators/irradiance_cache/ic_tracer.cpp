@@ -147,14 +147,14 @@ IcTracer::LightFilter IcTracer::LightFilter::of(const Scene& scene) {
     return f;
 }
 
-bool IcTracer::may_find_light(const Vec3& o, const Vec3& d) const {
+bool IcTracer::LightFilter::may_hit(const Vec3& o, const Vec3& d) const {
     // A ray of β = 0 can bring back only the emission of a light next-event estimation samples (add_emission): if
     // it meets none of the emitting triangles — the Möller–Trumbore test, widened by a margin in the barycentrics
     // and the distance so that no hit the scene's own intersection finds is missed — it brings back nothing and
     // need not be traced. (Whether something occludes the light is left to the traced ray.)
-    if (!m_light_filter.active) return true;
+    if (!active) return true;
     constexpr float tol = 1e-3f;
-    for (const LightFilter::Triangle& tri : m_light_filter.triangles) {
+    for (const Triangle& tri : triangles) {
         const Vec3 pv = cross(d, tri.e2);
         const float det = dot(tri.e1, pv);
         if (!(std::fabs(det) > 1e-20f)) return true;  // edge-on or degenerate: leave it to the scene
@@ -165,10 +165,12 @@ bool IcTracer::may_find_light(const Vec3& o, const Vec3& d) const {
         const Vec3 qv = cross(tv, tri.e1);
         const float v = dot(d, qv) * inv;
         if (!(v >= -tol && u + v <= 1.f + tol)) continue;
-        if (dot(tri.e2, qv) * inv > -m_light_filter.t_margin) return true;
+        if (dot(tri.e2, qv) * inv > -t_margin) return true;
     }
     return false;
 }
+
+bool IcTracer::may_find_light(const Vec3& o, const Vec3& d) const { return m_light_filter.may_hit(o, d); }
 
 void IcTracer::poll_gather() const {
     if (m_probe && m_probe->on_gather_ray) m_probe->on_gather_ray(m_stage);
