@@ -15,14 +15,20 @@
 //     bias (the documented bias here is 0).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <vector>
 
+#include "core/frame.h"
+#include "core/rng.h"
 #include "film/film.h"
 #include "ic_test_scenes.h"
 #include "integrators/camera_tiles.h"
 #include "integrators/irradiance_cache/ic_integrator.h"
+#include "sampling/warp.h"
+#include "scene/ray_offset.h"
 #include "scene/scene.h"
 #include "session/session.h"
 
@@ -55,7 +61,37 @@ double luminance_at(const std::vector<float>& rgba, size_t i) {
     return 0.2126 * rgba[4 * i] + 0.7152 * rgba[4 * i + 1] + 0.0722 * rgba[4 * i + 2];
 }
 
-TEST(IrradianceCache, EqualsPathAsTheErrorTendsToZero) {
+// The pre-pass's grid: every pixel of a film (at any origin) is visited exactly once, at one stride and one
+// sub-pass, and the points of one sub-pass lie 2s apart along both axes (a multiple of 2s in each coordinate
+// difference), so none of them is a neighbour of another on its own grid.
+TEST(IrradianceCache, PrepassSubPassesVisitEveryPixelOnceAndSpreadOut) {
+    for (int top : {1, 2, 16, 64})
+        for (auto [x0, y0, w, h] : {std::array{0, 0, 37, 23}, std::array{5, 130, 70, 9}}) {
+            std::vector<int> visits(size_t(w) * h, 0);
+            for (int st = top; st >= 1; st /= 2)
+                for (int sub = 0; sub < 4; ++sub) {
+                    std::vector<std::pair<int, int>> points;
+                    for (int y = y0; y < y0 + h; ++y)
+                        for (int x = x0; x < x0 + w; ++x)
+                            if (ic_prepass_sub_pass(x, y, st, top) == sub) {
+                                ++visits[size_t(y - y0) * w + (x - x0)];
+                                points.push_back({x, y});
+                            }
+                    if (st < top) EXPECT_TRUE(sub < 3 || points.empty()) << "stride " << st;
+                    for (const auto& [x, y] : points) {
+                        ASSERT_EQ((x - points[0].first) % (2 * st), 0) << "stride " << st << " sub-pass " << sub;
+                        ASSERT_EQ((y - points[0].second) % (2 * st), 0) << "stride " << st << " sub-pass " << sub;
+                    }
+                }
+            for (size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i], 1) << "pixel " << i << ", top " << top;
+        }
+}
+
+// `sky`: the Cornell box with a sky outside its open front (a constant world: light no next-event estimation
+// samples, which the gathers and the camera paths' continuations must not both count); black: the closed box's
+// only light is its two emitting triangles, so camera continuations of β = 0 are traced only where they may meet
+// them (IcTracer::may_find_light) — a filter that dropped rays which find the light would darken the image.
+void expect_equals_path_as_the_error_tends_to_zero(Color sky) {
     // The lower three quarters of a 24 × 24 frame (a border): the light's edge pixels, whose noise would hide a bias
     // of the rest, are left out.
     const int w = 24, h = 18;
@@ -68,9 +104,6 @@ TEST(IrradianceCache, EqualsPathAsTheErrorTendsToZero) {
     Params path = cornell_box_params(w, 24, 256, "PATH");
     path.set("crop_y1", int64_t(h));
     path.set("seed", int64_t(2));
-    // A sky outside the open front (a constant world: light no next-event estimation samples, which the gathers
-    // and the camera paths' continuations must not both count).
-    const Color sky(0.5f, 0.6f, 1.0f);
     const Rendered a = render_session(cornell_box_arrays(sky), ic), b = render_session(cornell_box_arrays(sky), path);
     int blocks = 0;
     double worst = 0.0, sum_a = 0, sum_b = 0, var = 0;
@@ -99,6 +132,55 @@ TEST(IrradianceCache, EqualsPathAsTheErrorTendsToZero) {
     EXPECT_LT(5.0 * std::sqrt(var) / sum_b, 0.015) << "precise enough";
     std::printf("largest block deviation %.2f σ, image %.2f σ (σ = %.2f %%)\n", worst, z_image,
                 100 * std::sqrt(var) / sum_b);
+}
+
+TEST(IrradianceCache, EqualsPathAsTheErrorTendsToZero) {
+    expect_equals_path_as_the_error_tends_to_zero({0.5f, 0.6f, 1.f});
+}
+
+TEST(IrradianceCache, EqualsPathAsTheErrorTendsToZeroInTheClosedBox) {
+    expect_equals_path_as_the_error_tends_to_zero(Color(0.f));
+}
+
+// The light filter of β = 0 continuations (IcTracer::LightFilter): on the closed Cornell box (two emitting
+// triangles, no world) every ray whose first hit the scene finds on the light is let through, and most rays that
+// find something else are not (what the filter saves). Rays from random points on the box's surfaces in
+// cosine-distributed directions about the normal, as continuations leave. A filter that rejected every ray, or
+// tested only one triangle of the two, fails it.
+TEST(IrradianceCache, LightFilterLetsThroughEveryRayThatFindsTheLight) {
+    const PreparedScene prepared(cornell_box_arrays(), cornell_box_params(16, 16, 1, "IRRADIANCE_CACHE"));
+    const Scene& scene = prepared.scene();
+    const IcTracer::LightFilter filter = IcTracer::LightFilter::of(scene);
+    ASSERT_TRUE(filter.active);
+    ASSERT_EQ(filter.triangles.size(), 2u);
+    Pcg32 rng(3, 5);
+    int to_light = 0, elsewhere = 0, kept_elsewhere = 0;
+    const Camera& cam = scene.camera();
+    for (int i = 0; i < 200000; ++i) {
+        // A surface point: the first hit of a random camera ray.
+        SurfaceHit first;
+        const Ray primary = cam.generate_ray({rng.next_float() * 16.f, rng.next_float() * 16.f});
+        if (!scene.intersect(primary, &first, PrimitiveRef{})) continue;
+        const Vec3 n = dot(first.ng, primary.d) < 0.f ? first.ng : -first.ng;
+        const Frame frame(n);
+        const Vec3 d = frame.to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}));
+        const Vec3 o = offset_ray_origin(first.p, n);
+        SurfaceHit hit;
+        const bool found =
+            scene.intersect(Ray{o, d, 0.f, std::numeric_limits<float>::infinity()}, &hit, first.primitive);
+        const bool pass = filter.may_hit(o, d);
+        if (found && hit.light >= 0) {
+            ++to_light;
+            ASSERT_TRUE(pass) << "ray " << i << " finds the light but is filtered out";
+        } else {
+            ++elsewhere;
+            kept_elsewhere += pass;
+        }
+    }
+    EXPECT_GT(to_light, 500);
+    EXPECT_LT(kept_elsewhere, elsewhere / 2) << "the filter lets through most rays that find no light";
+    std::printf("rays to the light %d (all let through); others %d, of which %d let through\n", to_light, elsewhere,
+                kept_elsewhere);
 }
 
 Rendered lit_render(int threads, int tile) {

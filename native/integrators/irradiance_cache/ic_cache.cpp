@@ -11,16 +11,17 @@ namespace candela {
 IcCache::IcCache(const SceneSphere& bounds, const IcCacheRules& rules)
     : m_rules(rules), m_octree(bounds.center, std::max(bounds.radius, 1e-6f) * 1.001f) {}
 
-bool IcCache::interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E, int* records_used) const {
-    // Σ w_i E_i(x, n) / Σ w_i over the usable records, summed in double in the octree's order (fixed by the
-    // insertions), so the value does not depend on the thread that asks.
+namespace {
+
+/// Ward's Σ w_i E_i(x, n) / Σ w_i over the usable records among those for_each visits (each inside its validity
+/// sphere), summed in double in the visiting order, so the value does not depend on the thread that asks.
+template <class ForEach>
+bool ward_interpolate(ForEach&& for_each, float a, bool gradients, const Vec3& x, const Vec3& n, Color* E,
+                      int* records_used) {
     double sum[3] = {0, 0, 0}, wsum = 0.0;
     int used = 0;
     const IcRecord* exact = nullptr;
-    const float a = m_rules.a;
-    m_octree.for_each_near(x, 0.f, [&](uint32_t i) {
-        const IcRecord& r = m_records[i];
-        if (length_squared(x - r.p) >= sqr(a * r.R)) return;  // outside its validity sphere: ε ≥ a already
+    for_each([&](const IcRecord& r) {
         float err;
         if (!ic_usable(r, x, n, a, &err)) return;
         ++used;
@@ -43,11 +44,42 @@ bool IcCache::interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E
     return true;
 }
 
+}  // namespace
+
+bool IcCache::interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E, int* records_used) const {
+    // The octree visits exactly the records whose validity sphere holds x, in an order fixed by the insertions.
+    return ward_interpolate([&](auto&& use) { m_octree.for_each_near(x, 0.f, [&](uint32_t i) { use(m_records[i]); }); },
+                            m_rules.a, gradients, x, n, E, records_used);
+}
+
+bool IcCache::interpolate_among(const std::vector<uint32_t>& candidates, const Vec3& x, const Vec3& n, Color* E) const {
+    return ward_interpolate(
+        [&](auto&& use) {
+            for (uint32_t i : candidates) {
+                // The octree's test, the same operations in the same order (IcOctree::block_mask).
+                const IcRecord& r = m_records[i];
+                const float dx = r.p.x - x.x, dy = r.p.y - x.y, dz = r.p.z - x.z, rr = validity_radius(r) + 0.f;
+                if (dx * dx + dy * dy + dz * dz < rr * rr) use(r);
+            }
+        },
+        m_rules.a, m_rules.gradients, x, n, E, nullptr);
+}
+
+bool IcCache::interpolate_list(const std::vector<IcRecord>& records, const IcCacheRules& rules, const Vec3& x,
+                               const Vec3& n, Color* E) {
+    return ward_interpolate(
+        [&](auto&& use) {
+            for (const IcRecord& r : records)
+                if (length_squared(x - r.p) < sqr(rules.a * r.R)) use(r);
+        },
+        rules.a, rules.gradients, x, n, E, nullptr);
+}
+
 bool IcCache::covered(const Vec3& x, const Vec3& n) const {
     bool found = false;
     m_octree.for_each_near(x, 0.f, [&](uint32_t i) {
         const IcRecord& r = m_records[i];
-        if (found || length_squared(x - r.p) >= sqr(m_rules.a * r.R)) return;
+        if (found) return;
         float err;
         if (ic_usable(r, x, n, m_rules.a, &err)) found = true;
     });
@@ -73,7 +105,7 @@ void IcCache::clamp_neighbours(IcRecord& rec) {
     for (uint32_t j : overlapping) {
         IcRecord& r = m_records[j];
         r.R = std::max(std::min(r.R, rec.R + length(r.p - rec.p)), r.R_min);
-        // A smaller radius keeps the record's sphere inside its octree node: no need to move it.
+        m_octree.shrink_radius(j, validity_radius(r));  // a smaller sphere: it stays in its octree node
     }
 }
 
@@ -89,9 +121,7 @@ bool IcCache::insert(IcRecord record) {
 
 std::vector<uint32_t> IcCache::records_near(const Vec3& x, float range) const {
     std::vector<uint32_t> out;
-    m_octree.for_each_near(x, range, [&](uint32_t i) {
-        if (length(x - m_records[i].p) < validity_radius(m_records[i]) + range) out.push_back(i);
-    });
+    m_octree.for_each_near(x, range, [&](uint32_t i) { out.push_back(i); });
     std::sort(out.begin(), out.end());
     return out;
 }

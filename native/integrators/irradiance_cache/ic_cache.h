@@ -40,6 +40,18 @@ public:
     }
     /// The same with or without the gradient terms (whatever the rules say: tests compare both on one record set).
     bool interpolate(const Vec3& x, const Vec3& n, bool gradients, Color* E, int* records_used = nullptr) const;
+    /// The records whose validity sphere comes within `range` of `anchor`, in the order the octree visits them
+    /// (appended to *out). For a point x closer than `range` to `anchor` they include every record whose sphere
+    /// holds x, in the same order as a query at x visits them: interpolate_among(them, x, …) is interpolate(x, …).
+    void candidates_near(const Vec3& anchor, float range, std::vector<uint32_t>* out) const {
+        m_octree.for_each_near(anchor, range, [&](uint32_t i) { out->push_back(i); });
+    }
+    /// interpolate(x, n, E) over those candidates (each tested against its sphere as the octree does).
+    bool interpolate_among(const std::vector<uint32_t>& candidates, const Vec3& x, const Vec3& n, Color* E) const;
+    /// The same interpolation over a list of records outside the cache (a pixel's own records of this pass:
+    /// ic_tracer.cpp), with these rules.
+    static bool interpolate_list(const std::vector<IcRecord>& records, const IcCacheRules& rules, const Vec3& x,
+                                 const Vec3& n, Color* E);
     /// Whether some record is usable at (x, n).
     bool covered(const Vec3& x, const Vec3& n) const;
 

@@ -26,6 +26,20 @@ double ic_memory_bytes(const Params& params, double film_pixels) {
     return double(ic_record_capacity(IcSettings::from_params(params), film_pixels)) * double(k_ic_bytes_per_record);
 }
 
+/// The pre-pass's sub-pass of full-frame pixel (fx, fy) at stride s (coarsest: `top`), or -1 if it is not a grid
+/// point first visited at that stride. A level's points are split by the parity of their grid coordinates
+/// (fx/s, fy/s) into sub-passes, each reading the cache the earlier ones completed: first the points farthest from
+/// the points already visited — at a finer level the centres of the coarser grid's squares (odd, odd), then the
+/// midpoints of its edges (odd, even), (even, odd); at the coarsest, (0, 0), (1, 1), (1, 0), (0, 1) — so that
+/// neighbouring points of one level do not all gather where one record would have served them.
+int ic_prepass_sub_pass(int fx, int fy, int s, int top) {
+    if (fx % s != 0 || fy % s != 0) return -1;
+    const int ox = (fx / s) & 1, oy = (fy / s) & 1;
+    if (s == top) return ox == oy ? ox : 2 + oy;  // (0,0) 0, (1,1) 1, (1,0) 2, (0,1) 3
+    if (ox == 0 && oy == 0) return -1;            // a point of a coarser level
+    return ox && oy ? 0 : 1 + oy;                 // (1,1) 0, (1,0) 1, (0,1) 2
+}
+
 namespace {
 
 /// The coarsest pre-pass grid: the largest power of two ≤ the maximum spacing (at least 1, at most 64 pixels).
@@ -35,11 +49,7 @@ int coarsest_stride(float max_spacing) {
     return s;
 }
 
-/// Whether full-frame pixel (fx, fy) is a grid point first visited at stride s (coarsest: `top`).
-bool on_level(int fx, int fy, int s, int top) {
-    if (fx % s != 0 || fy % s != 0) return false;
-    return s == top || fx % (2 * s) != 0 || fy % (2 * s) != 0;
-}
+constexpr int k_prepass_sub_passes = 4;  // at most, per level
 
 class IcIntegrator final : public Integrator {
 public:
@@ -48,6 +58,7 @@ public:
 
     void render(const Scene& scene, Film& film, RenderContext& ctx) override {
         m_logged_full = false;
+        m_candidates = 0;
         if (scene.has_motion()) return render_moving(scene, film, ctx);
         const LightSampler light_sampler = make_light_sampler("TREE", scene.lights());
         const IcCacheRules rules = cache_rules(film);
@@ -60,10 +71,12 @@ public:
             ctx.counters.stop_reason = int(StopReason::Cancelled);
             return;
         }
-        const size_t from_prepass = cache.size();
+        const size_t from_prepass = cache.size(), prepass_gathers = m_candidates;
         render_passes(state);
         ctx.log("irradiance cache: " + std::to_string(cache.size()) + " records (" + std::to_string(from_prepass) +
-                " from the pre-pass, " + std::to_string(cache.size() - from_prepass) + " added while rendering)");
+                " from the pre-pass, " + std::to_string(cache.size() - from_prepass) +
+                " added while rendering; gathers: " + std::to_string(prepass_gathers) + " in the pre-pass, " +
+                std::to_string(m_candidates - prepass_gathers) + " while rendering)");
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
     // Motion blur: one shutter time per pass, with a cache of that time (render_moving).
@@ -161,6 +174,7 @@ private:
             return a.pixel_y != b.pixel_y ? a.pixel_y < b.pixel_y : a.pixel_x < b.pixel_x;
         });
         size_t dropped = 0;
+        m_candidates += pending.size();
         for (const IcRecord& r : pending)
             if (s.cache.full())
                 ++dropped;
@@ -188,9 +202,10 @@ private:
         aovs->set_pass("IC Records", std::move(count));
     }
 
-    /// The pre-pass: grids of stride 2^k, …, 2, 1 pixels; at each point the camera ray's first Lambertian surface
-    /// gets a record where none of the earlier levels' is usable. A level reads the cache as the earlier levels
-    /// left it; its records are merged in raster order (merge). False if cancelled.
+    /// The pre-pass: grids of stride 2^k, …, 2, 1 pixels, each level in sub-passes (ic_prepass_sub_pass); at each point
+    /// the camera ray's first Lambertian surface gets a record where none of the earlier sub-passes' is usable. A
+    /// sub-pass reads the cache as the earlier ones left it; its records are merged in raster order (merge). False
+    /// if cancelled.
     bool prepass(State& s) {
         const Film& film = s.film;
         const int top = coarsest_stride(m_settings.max_spacing);
@@ -198,45 +213,48 @@ private:
         int64_t total = 0;
         for (int st = top; st >= 1; st /= 2)
             for (int y = 0; y < film.height(); ++y)
-                for (int x = 0; x < film.width(); ++x) total += on_level(x0 + x, y0 + y, st, top);
+                for (int x = 0; x < film.width(); ++x) total += ic_prepass_sub_pass(x0 + x, y0 + y, st, top) >= 0;
         s.ctx.counters.stage.begin("Irradiance cache", total, /*percent=*/true);
         s.ctx.counters.stage.set_note("0 records");
         s.tracer.set_stage(IcStage::Prepass);
         std::atomic<int64_t> done{0};
         const auto& tiles = film.tiles();
-        for (int st = top; st >= 1; st /= 2) {
-            std::vector<IcRecord> pending;
-            try {
-                parallel_ordered(
-                    s.ctx.threads, tiles.size(), size_t(2 * std::max(1, s.ctx.threads)),
-                    [&](size_t t) {
-                        const ShutterScope scope(s.time);
-                        const Tile& tile = tiles[t];
-                        std::vector<IcRecord> out;
-                        PathStats stats;
-                        int64_t points = 0;
-                        for (int y = tile.y0; y < tile.y1 && !s.ctx.cancel.cancelled(); ++y)
-                            for (int x = tile.x0; x < tile.x1; ++x) {
-                                const int fx = x0 + x, fy = y0 + y;
-                                if (!on_level(fx, fy, st, top)) continue;
-                                ++points;
-                                const uint64_t key =
-                                    hash_values(s.seed, uint64_t(st), (uint64_t(uint32_t(fy)) << 32) | uint32_t(fx));
-                                IcRecord r;
-                                if (s.tracer.prepass_record(fx, fy, key, stats, &r)) out.push_back(r);
-                            }
-                        stats.flush(s.ctx.counters);
-                        s.ctx.counters.stage.set_done(done += points);
-                        return out;
-                    },
-                    [&](size_t, std::vector<IcRecord>&& out) { pending.insert(pending.end(), out.begin(), out.end()); },
-                    &s.ctx.cancel);
-            } catch (const Cancelled&) {
-                return false;
+        for (int st = top; st >= 1; st /= 2)
+            for (int sub = 0; sub < k_prepass_sub_passes; ++sub) {
+                std::vector<IcRecord> pending;
+                try {
+                    parallel_ordered(
+                        s.ctx.threads, tiles.size(), size_t(2 * std::max(1, s.ctx.threads)),
+                        [&](size_t t) {
+                            const ShutterScope scope(s.time);
+                            const Tile& tile = tiles[t];
+                            std::vector<IcRecord> out;
+                            PathStats stats;
+                            int64_t points = 0;
+                            for (int y = tile.y0; y < tile.y1 && !s.ctx.cancel.cancelled(); ++y)
+                                for (int x = tile.x0; x < tile.x1; ++x) {
+                                    const int fx = x0 + x, fy = y0 + y;
+                                    if (ic_prepass_sub_pass(fx, fy, st, top) != sub) continue;
+                                    ++points;
+                                    const uint64_t key = hash_values(s.seed, uint64_t(st),
+                                                                     (uint64_t(uint32_t(fy)) << 32) | uint32_t(fx));
+                                    IcRecord r;
+                                    if (s.tracer.prepass_record(fx, fy, key, stats, &r)) out.push_back(r);
+                                }
+                            stats.flush(s.ctx.counters);
+                            s.ctx.counters.stage.set_done(done += points);
+                            return out;
+                        },
+                        [&](size_t, std::vector<IcRecord>&& out) {
+                            pending.insert(pending.end(), out.begin(), out.end());
+                        },
+                        &s.ctx.cancel);
+                } catch (const Cancelled&) {
+                    return false;
+                }
+                if (s.ctx.cancel.cancelled()) return false;
+                merge(s, pending);
             }
-            if (s.ctx.cancel.cancelled()) return false;
-            merge(s, pending);
-        }
         s.ctx.counters.stage.end();
         return true;
     }
@@ -284,6 +302,7 @@ private:
     IcSettings m_settings;
     const IcProbe* m_probe;
     bool m_logged_full = false;  // "cache full" is logged once per render
+    size_t m_candidates = 0;     // records made (each a gather), stored or not
 };
 
 }  // namespace

@@ -18,5 +18,8 @@ double ic_memory_bytes(const Params& params, double film_pixels);
 /// Records the cache keeps at most for a film of `film_pixels`: one per min_spacing² pixels (min_spacing at least
 /// half a pixel), plus 4096.
 size_t ic_record_capacity(const IcSettings& settings, double film_pixels);
+/// The pre-pass's sub-pass (0 … 3) of full-frame pixel (fx, fy) at grid stride s (coarsest: `top`, a power of two),
+/// or −1 if the pixel is not a point first visited at that stride (docs/irradiance_cache.md, "Record placement").
+int ic_prepass_sub_pass(int fx, int fy, int s, int top);
 
 }  // namespace candela

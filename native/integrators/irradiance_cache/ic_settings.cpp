@@ -44,7 +44,7 @@ const std::vector<ParamSpec>& IcSettings::specs() {
                    "Limit a record's radius by its neighbours' (R_i ≤ R_j + ‖x_i − x_j‖, Křivánek et al.), so records "
                    "are not too sparse near contact shadows a gather missed",
                    "Irradiance Cache"),
-        bool_param("ic_reuse_at_bounces", "Reuse at Later Bounces", false,
+        bool_param("ic_reuse_at_bounces", "Reuse at Later Bounces", true,
                    "Radiance's way: gather paths read the cache at diffuse surfaces instead of tracing on (faster; "
                    "adds the interpolation error of those records to the records that use them)",
                    "Irradiance Cache"),

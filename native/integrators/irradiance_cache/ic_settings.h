@@ -20,7 +20,7 @@ struct IcSettings {
     float max_spacing = 20.f;  // Lamorlette 2004); min 0 = no lower clamp
     bool gradients = true;     // Ward & Heckbert's gradients in the interpolation
     bool neighbour_clamping = true;  // Křivánek et al. 2006
-    bool reuse_at_bounces = false;   // Radiance's way: gather paths read the cache at their diffuse vertices
+    bool reuse_at_bounces = true;    // Radiance's way: gather paths read the cache at their diffuse vertices
     // Fixed rules (not published): next-event estimation as PATH's defaults, roulette THROUGHPUT from bounce 3.
     DirectLightRules direct;
     int rr_start_bounce = 3;

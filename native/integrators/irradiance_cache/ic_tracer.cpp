@@ -25,9 +25,50 @@ constexpr float k_inf = std::numeric_limits<float>::infinity();
 
 thread_local std::vector<IcRecord>* t_sink = nullptr;
 
+// In-pass reuse: the records the current pixel's samples made in this pass, which its later samples of the pass
+// read where the frozen cache has none (a pass's samples of one pixel run in a fixed order on one thread, so what
+// a sample sees depends neither on the threads nor on the tiles). Without it every sample of a pass that lands in
+// a gap between the cache's records would gather its own record there, and the merge keep one.
+//
+// The same pixel's samples mostly meet the same surface within a pixel's footprint: the first lookup of a pixel
+// (in a pass) collects the records whose spheres come within two footprints of its point (the anchor), and the
+// later lookups closer than that to the anchor test only those candidates — the records and the order a full
+// query would visit, so the same value, for a fraction of the octree walk.
+struct PixelRecords {
+    int px = -1, py = -1;
+    std::vector<IcRecord> records;
+    Vec3 anchor{0.f};
+    float range = -1.f;  // < 0: no anchor yet
+    std::vector<uint32_t> candidates;
+    void reset(int x, int y) {
+        px = x;
+        py = y;
+        records.clear();
+        range = -1.f;
+        candidates.clear();
+    }
+};
+thread_local PixelRecords t_pixel;
+
 }  // namespace
 
-void IcTracer::set_sink(std::vector<IcRecord>* sink) { t_sink = sink; }
+void IcTracer::set_sink(std::vector<IcRecord>* sink) {
+    t_sink = sink;
+    t_pixel.reset(-1, -1);
+}
+
+bool IcTracer::camera_lookup(const Vec3& x, const Vec3& n, float footprint, int px, int py, Color* E) const {
+    if (t_pixel.px != px || t_pixel.py != py) t_pixel.reset(px, py);
+    if (t_pixel.range < 0.f && footprint > 0.f && std::isfinite(footprint)) {
+        t_pixel.anchor = x;
+        t_pixel.range = 2.f * footprint;
+        m_cache.candidates_near(x, t_pixel.range, &t_pixel.candidates);
+    }
+    // 0.99: a margin against rounding in the candidates' own distance test.
+    if (t_pixel.range > 0.f && length_squared(x - t_pixel.anchor) < sqr(0.99f * t_pixel.range))
+        return m_cache.interpolate_among(t_pixel.candidates, x, n, E);
+    return m_cache.interpolate(x, n, E);
+}
 
 IcTracer::IcTracer(const Scene& scene, const IcSettings& settings, const LightSampler& light_sampler,
                    const IcCache& cache, const PixelFootprint& footprint, const CancelToken& cancel,
@@ -41,7 +82,8 @@ IcTracer::IcTracer(const Scene& scene, const IcSettings& settings, const LightSa
       m_probe(probe),
       m_strata(GatherStrata::for_rays(settings.gather_rays)),
       m_rules(settings.direct),
-      m_rules_gathered(settings.direct) {
+      m_rules_gathered(settings.direct),
+      m_light_filter(LightFilter::of(scene)) {
     m_rules_gathered.light_sampling = LightSampling::LightOnly;
 }
 
@@ -80,6 +122,56 @@ void IcTracer::add_world_emission(const Ray& ray, const PathState& st, Color& L)
         add_emission(st, lights.background(), 0.f, L);  // a constant world: never light-sampled, weight 1
 }
 
+bool IcTracer::only_light_emission(const PathState& st, const SurfaceHit& hit) const {
+    // With β = 0 (the cache served every lobe at the ray's origin) the ray counts only the emission of a light
+    // next-event estimation samples (β_emit, add_emission); a surface that is no light adds β·L_e = 0 and the path
+    // ends there, so its shading need not be evaluated.
+    return hit.light < 0 && is_black(st.beta);
+}
+
+IcTracer::LightFilter IcTracer::LightFilter::of(const Scene& scene) {
+    // Only where every light a ray can find is one of a few emitting triangles: no world light (an escaping ray
+    // would find it), no analytic area light (found by its own intersection), no motion (the triangles move).
+    LightFilter f;
+    if (scene.has_motion()) return f;
+    for (size_t i = 0; i < scene.lights().size(); ++i) {
+        const Light& light = scene.lights()[uint32_t(i)];
+        if (std::holds_alternative<AreaLight>(light) || std::holds_alternative<WorldLight>(light)) return f;
+        if (const auto* tri = std::get_if<TriangleLight>(&light)) {
+            if (f.triangles.size() == k_max_triangles) return f;
+            f.triangles.push_back({tri->p0, tri->p1 - tri->p0, tri->p2 - tri->p0});
+        }
+    }
+    f.active = true;
+    f.t_margin = 1e-3f * std::max(scene.bounds().radius, 1e-6f);
+    return f;
+}
+
+bool IcTracer::LightFilter::may_hit(const Vec3& o, const Vec3& d) const {
+    // A ray of β = 0 can bring back only the emission of a light next-event estimation samples (add_emission): if
+    // it meets none of the emitting triangles — the Möller–Trumbore test, widened by a margin in the barycentrics
+    // and the distance so that no hit the scene's own intersection finds is missed — it brings back nothing and
+    // need not be traced. (Whether something occludes the light is left to the traced ray.)
+    if (!active) return true;
+    constexpr float tol = 1e-3f;
+    for (const Triangle& tri : triangles) {
+        const Vec3 pv = cross(d, tri.e2);
+        const float det = dot(tri.e1, pv);
+        if (!(std::fabs(det) > 1e-20f)) return true;  // edge-on or degenerate: leave it to the scene
+        const float inv = 1.f / det;
+        const Vec3 tv = o - tri.p0;
+        const float u = dot(tv, pv) * inv;
+        if (!(u >= -tol && u <= 1.f + tol)) continue;
+        const Vec3 qv = cross(tv, tri.e1);
+        const float v = dot(d, qv) * inv;
+        if (!(v >= -tol && u + v <= 1.f + tol)) continue;
+        if (dot(tri.e2, qv) * inv > -t_margin) return true;
+    }
+    return false;
+}
+
+bool IcTracer::may_find_light(const Vec3& o, const Vec3& d) const { return m_light_filter.may_hit(o, d); }
+
 void IcTracer::poll_gather() const {
     if (m_probe && m_probe->on_gather_ray) m_probe->on_gather_ray(m_stage);
     if (m_cancel.cancelled()) throw Cancelled();
@@ -107,15 +199,25 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
     Color E(0.f);
     bool cached = false;
     if (split && !is_black(split->rho_d) && wo_local.z > 0.f) {
-        if (m_cache.interpolate(hit.p, v.frame.n, &E)) {
+        const bool camera = policy == CachePolicy::Create && t_sink;
+        if (camera ? camera_lookup(hit.p, v.frame.n, m_footprint.at(st.distance), px, py, &E)
+                   : m_cache.interpolate(hit.p, v.frame.n, &E)) {
             cached = true;
         } else if (policy == CachePolicy::Create) {
-            IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key, stats);
-            rec.pixel_x = px;
-            rec.pixel_y = py;
-            E = rec.E;  // its value at its own point: what the cache would give here once it holds it
-            cached = true;
-            if (t_sink) t_sink->push_back(rec);
+            if (t_pixel.px != px || t_pixel.py != py) t_pixel.reset(px, py);
+            if (IcCache::interpolate_list(t_pixel.records, m_cache.rules(), hit.p, v.frame.n, &E)) {
+                cached = true;
+            } else {
+                IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key, stats);
+                rec.pixel_x = px;
+                rec.pixel_y = py;
+                E = rec.E;  // its value at its own point: what the cache would give here once it holds it
+                cached = true;
+                if (t_sink) {
+                    t_sink->push_back(rec);
+                    t_pixel.records.push_back(rec);
+                }
+            }
         }
     }
 
@@ -129,7 +231,9 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
 
     // Direct light over the whole BSDF, next-event estimation and BSDF sampling combined by MIS exactly as PATH
     // (common/direct_light.h); the BSDF-sampled half is the continuation ray below, which therefore always
-    // leaves, whichever lobe it samples.
+    // leaves, whichever lobe it samples. (Next-event estimation alone where the cache served every lobe would save
+    // that ray, but doubled the Cornell box's relative RMSE at 256 samples: the ceiling beside the light, where
+    // light sampling alone is poor, carries most of the squared error.)
     const LightSampleContext ctx{hit.p, v.ns};
     int ward_tested = 0;
     if (nee_here) {
@@ -166,6 +270,8 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
         beta /= survive;
     }
     if (is_black(beta_emit) || !is_finite(beta_emit) || !is_finite(beta)) return false;
+    const Vec3 origin = spawn.origin(cos_g > 0.f);
+    if (is_black(beta) && !bs.is_delta() && !may_find_light(origin, wi)) return false;
     st.beta_emit = beta_emit;
     st.beta = beta;
     st.eta_scale = eta_scale;
@@ -175,7 +281,7 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
     st.origin.ward_tested = ward_tested;
     st.rules = &m_rules;
     st.from = hit.primitive;
-    ray = Ray{spawn.origin(cos_g > 0.f), wi, 0.f, k_inf, continuation_ray_type(bs, ray.type)};
+    ray = Ray{origin, wi, 0.f, k_inf, continuation_ray_type(bs, ray.type)};
     return true;
 }
 
@@ -225,6 +331,7 @@ void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats,
             return;
         }
         if (bounce == 0 && !camera_hit(m_scene, ray, hit, aov, alpha)) return;  // data passes, holdout
+        if (only_light_emission(st, hit)) return;
         const ShadingPoint sp = m_scene.shade(hit, -ray.d);
         if (!is_black(sp.emission))
             add_emission(st, sp.emission, hit.light >= 0 ? emitter_pdf(st, hit.light, ray.d, hit.t) : 0.f, L);
@@ -258,6 +365,7 @@ Color IcTracer::trace_gather(const Ray& first_ray, const PathState& start, uint6
             return L;
         }
         if (bounce == 1) *distance = hit.t;
+        if (only_light_emission(st, hit)) return L;
         const ShadingPoint sp = m_scene.shade(hit, -ray.d);
         if (!is_black(sp.emission))
             add_emission(st, sp.emission, hit.light >= 0 ? emitter_pdf(st, hit.light, ray.d, hit.t) : 0.f, L);

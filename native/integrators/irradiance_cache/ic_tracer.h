@@ -96,6 +96,20 @@ public:
         float distance = 0.f;  // path length from the camera (camera paths)
     };
     enum class CachePolicy { Create, ReadIfValid, Never };
+    /// The emitting triangles a ray of β = 0 must meet to bring back anything (active: no other light it can find).
+    struct LightFilter {
+        static constexpr size_t k_max_triangles = 32;  // beyond, tracing the ray costs less than testing them
+        struct Triangle {
+            Vec3 p0, e1, e2;
+        };
+        std::vector<Triangle> triangles;
+        float t_margin = 0.f;
+        bool active = false;
+        static LightFilter of(const Scene& scene);
+        /// Whether a ray from o along d may meet one of the triangles (false only where it certainly meets none;
+        /// true when inactive).
+        bool may_hit(const Vec3& o, const Vec3& d) const;
+    };
 
 private:
     template <class ConcreteSampler>
@@ -112,6 +126,13 @@ private:
     void add_area_light_emission(const Ray& ray, float t_surface, bool camera_ray, const PathState& st, Color& L) const;
     void add_world_emission(const Ray& ray, const PathState& st, Color& L) const;
     float emitter_pdf(const PathState& st, int32_t light, const Vec3& d, float t) const;
+    /// Whether a ray of β = 0 from o along d may find a light (false only where it certainly finds none).
+    bool may_find_light(const Vec3& o, const Vec3& d) const;
+    /// A camera path's lookup at (x, n) in pixel (px, py), a pixel's footprint from its point: through the pixel's
+    /// candidates where x is near the pixel's anchor (ic_tracer.cpp), else the octree.
+    bool camera_lookup(const Vec3& x, const Vec3& n, float footprint, int px, int py, Color* E) const;
+    /// Whether the ray that found `hit` can bring back nothing more from it (no light there, β = 0).
+    bool only_light_emission(const PathState& st, const SurfaceHit& hit) const;
     void poll_gather() const;
 
     const Scene& m_scene;
@@ -124,6 +145,7 @@ private:
     GatherStrata m_strata;
     DirectLightRules m_rules;           // next-event estimation and MIS everywhere
     DirectLightRules m_rules_gathered;  // a gather ray's first segment: LIGHT_ONLY (light sampling at x covers it)
+    LightFilter m_light_filter;
     IcStage m_stage = IcStage::Prepass;
 };
 
