@@ -54,7 +54,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     a.out = Path(a.out or Path(a.build) / "env-variance")
     a.out.mkdir(parents=True, exist_ok=True)
-    a.scenes, a.reuse = SCENES, False
+    a.scenes, a.reuse, a.integrator = SCENES, False, "PATH"
     result = parity.render_all(a)
     native = parity.native_module(a.build)
     ok = True
