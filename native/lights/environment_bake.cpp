@@ -15,6 +15,15 @@ namespace {
 constexpr uint32_t k_max_width = 2048, k_max_bilinear = 2048, k_default_width = 256, k_min_width = 32;
 constexpr uint32_t k_max_sub = 4;  // sub-samples per cell and axis, at most
 constexpr float k_floor = 1e-3f;   // share of the mean luminance every direction keeps in the plain map
+// The compensated map keeps L − mean only where it exceeds 10⁻⁴ of the mean: a constant image's knots equal its
+// computed mean up to rounding, and must give an empty map, not one shaped by rounding noise.
+constexpr float k_compensation_margin = 1e-4f;
+
+/// max(x − mean, 0), 0 within the margin.
+float compensate(float x, float mean) {
+    const float d = x - mean;
+    return d > k_compensation_margin * mean ? d : 0.f;
+}
 
 /// The images the program reads: the widest and tallest, and whether all have one size and are read with
 /// Linear (or Cubic) interpolation — the case of the bilinear map.
@@ -95,7 +104,7 @@ EnvironmentBake bake_bilinear(const std::function<Color(const Vec3&)>& Le, uint3
     for (size_t k = 0; k < radiance.size(); ++k) {
         const float l = std::fmax(luminance(radiance[k]), 0.f);
         plain[k] = l + k_floor * mean_lum;
-        compensated[k] = std::fmax(l - mean_lum, 0.f);
+        compensated[k] = compensate(l, mean_lum);
     }
     bake.plain = EnvironmentDensity(BilinearSphereDistribution(std::move(plain), nu, nv));
     bake.compensated = EnvironmentDensity(BilinearSphereDistribution(std::move(compensated), nu, nv));
@@ -148,7 +157,7 @@ EnvironmentBake bake_constant(const std::function<Color(const Vec3&)>& Le, uint3
         for (uint32_t i = 0; i < nu; ++i) {
             const size_t c = size_t(j) * nu + i;
             plain[c] = weights[c] + k_floor * mean_lum * sines[j];
-            compensated[c] = std::fmax(weights[c] - mean_lum * sines[j], 0.f);
+            compensated[c] = compensate(weights[c], mean_lum * sines[j]);
         }
     bake.plain = EnvironmentDensity(Distribution2D(plain, nu, nv));
     bake.compensated = EnvironmentDensity(Distribution2D(compensated, nu, nv));

@@ -14,10 +14,10 @@
 // Each comes twice. `plain` adds a floor of 10⁻³ of the mean luminance to every direction, so that it can be
 // the only strategy (light tracing, photon emission, next-event estimation without MIS). `compensated` is MIS
 // compensation (Karlík, Šik, Vévoda, Skřivan, Křivánek 2019, "MIS compensation: optimizing sampling techniques in
-// multiple importance sampling", ACM TOG 38(6), §4): the radiance less its mean over the sphere, clamped at 0 —
-// the map for next-event estimation combined by MIS with BSDF sampling, which already covers the dim sky, so the
-// shadow rays go where the environment is brighter than average. Its density is 0 where L ≤ mean: valid only
-// beside a strategy that covers those directions.
+// multiple importance sampling", ACM TOG 38(6), §4): the radiance less its mean over the sphere, clamped at 0
+// (and 0 within 10⁻⁴ of the mean) — the map for next-event estimation combined by MIS with BSDF sampling, which
+// already covers the dim sky, so the shadow rays go where the environment is brighter than average. Its density is
+// 0 where L ≤ mean: valid only beside a strategy that covers those directions.
 #pragma once
 
 #include <cmath>
