@@ -25,8 +25,19 @@ float compensate(float x, float mean) {
     return d > k_compensation_margin * mean ? d : 0.f;
 }
 
-/// The images the program reads: the widest and tallest, and whether all have one size and are read with
-/// Linear (or Cubic) interpolation — the case of the bilinear map.
+/// Whether register `reg` of the program is the plain view direction (so an image it indexes has its texel grid
+/// on the map's: the knots at texel centres). A mapped or rotated vector is not.
+bool plain_direction(const ShaderLibrary& lib, uint32_t program, uint32_t reg) {
+    const ShaderOp& v = lib.op(program, reg);
+    if (v.code != ShaderOpCode::Coord || v.i[1] != 0) return false;
+    const CoordKind kind = CoordKind(v.i[0]);
+    return kind == CoordKind::Generated || kind == CoordKind::Incoming || kind == CoordKind::Object;
+}
+
+/// The images the program reads: the widest and tallest, and whether all have one size, are read with Linear (or
+/// Cubic) interpolation and are indexed by the plain view direction — the case of the bilinear map. (A rotated
+/// image's filtered radiance is not bilinear on the map's grid: the integrated piecewise-constant map, with 2 × 2
+/// points per texel, then cannot miss a bright texel between knots.)
 struct ImagesRead {
     uint32_t w = 0, h = 0;
     bool bilinear = false;
@@ -42,7 +53,8 @@ ImagesRead images_read(const ShaderLibrary& lib, uint32_t program) {
         if (any && (t.width != r.w || t.height != r.h)) same = false;
         r.w = std::max(r.w, t.width);
         r.h = std::max(r.h, t.height);
-        linear = linear && TexInterpolation(op.i[1]) != TexInterpolation::Closest;
+        linear =
+            linear && TexInterpolation(op.i[1]) != TexInterpolation::Closest && plain_direction(lib, program, op.a);
         any = true;
     }
     r.bilinear = any && same && linear && r.w >= 2 && r.h >= 2 && r.w <= k_max_bilinear && r.h <= k_max_bilinear;
