@@ -3,17 +3,15 @@
 //
 // Estimates: the radiance arriving from the world along a direction, for next-event estimation with a
 // solid-angle pdf that MIS can combine with BSDF sampling (pbrt-v3 §14.2.4, "Infinite Area Lights").
-// The world shader is baked once into an equirectangular grid (Blender's mapping, u = ½ − φ/2π,
-// v = 1 − θ/π) at the resolution of the environment image it reads (at most 2048 × 1024). Cell (i, j) gets
-// the weight ∫ luminance(L)·sin θ over the cell — the integral of the radiance as rendered, i.e. the filtered
-// image, by the midpoint rule on 2 × 2 points per texel the cell spans (exact for Linear and Closest filtering
-// when cells are texels: the four quarter cells do not cross a texel centre, so the bilinear image is bilinear
-// on each) — plus a floor of 10⁻³ of the mean, so every direction keeps a positive density. One value per cell
-// would miss the part of a bright texel's filtered footprint that reaches into its neighbours. A direction is
-// drawn from the 2-D piecewise-constant distribution over (u, v) and
+// The world shader is baked once into importance maps over the equirectangular domain (Blender's mapping,
+// u = ½ − φ/2π, v = 1 − θ/π) that follow the radiance as rendered — piecewise bilinear with knots at the texel
+// centres for an image read with Linear interpolation, piecewise constant over texels for Closest and for
+// procedural worlds (lights/environment_bake.h) — and a direction is drawn from one and
 //     p_ω(ω) = p_uv(u, v) / (2π² sin θ)        (dω = sin θ dθ dφ = 2π² sin θ du dv).
-// The radiance itself is always the shader's exact value, never the bake, so the bake only shapes the
-// variance.
+// Two maps: `plain` (every direction keeps a positive density) for strategies that stand alone, and the MIS-
+// compensated one (the radiance less its mean, clamped at 0; Karlík et al. 2019) for next-event estimation
+// combined with BSDF sampling (sample(u, true), pdf(d, true)). The radiance itself is always the shader's exact
+// value, never the bake, so the bake only shapes the variance.
 //
 // A sun disc (a Nishita Sky Texture's: ShaderLibrary::sun_disc) is far smaller than a bake cell, so the bake
 // barely sees it: it is sampled as a strategy of its own, uniformly over its cone, with probability q (its share of
@@ -24,8 +22,8 @@
 #include <cstdint>
 #include <memory>
 
+#include "lights/environment_bake.h"
 #include "lights/light_sample.h"
-#include "sampling/distribution_2d.h"
 #include "texture/shader_program.h"
 
 namespace candela {
@@ -37,27 +35,30 @@ public:
 
     /// Radiance arriving along −d (d points from the scene toward the sky).
     Color Le(const Vec3& d) const;
-    /// A direction toward the environment and its solid-angle pdf.
-    LightSample sample(Vec2 u) const;
-    /// The solid-angle density with which sample() produces direction d.
-    float pdf(const Vec3& d) const;
+    /// A direction toward the environment and its solid-angle pdf; `compensated`: from the MIS-compensated map
+    /// (next-event estimation beside BSDF sampling; 0 density where the radiance is below its mean).
+    LightSample sample(Vec2 u, bool compensated = false) const;
+    /// The solid-angle density with which sample(·, compensated) produces direction d.
+    float pdf(const Vec3& d, bool compensated = false) const;
     /// The radiance averaged over all directions (power estimates, light-selection bounds).
     Color mean_radiance() const { return m_mean; }
-    /// Bake resolution (width = 2·height).
-    uint32_t width() const { return uint32_t(m_distribution.nu()); }
-    uint32_t height() const { return uint32_t(m_distribution.nv()); }
+    /// Map resolution: bake cells, or the knot columns and rows between the poles of a bilinear map.
+    uint32_t width() const { return m_maps[0].width(); }
+    uint32_t height() const { return m_maps[0].height(); }
+    /// Whether the maps are piecewise bilinear (an image read with Linear interpolation).
+    bool bilinear() const { return m_maps[0].bilinear(); }
 
 private:
     std::shared_ptr<const ShaderLibrary> m_shaders;
     uint32_t m_program, m_reg;
-    Distribution2D m_distribution;
+    EnvironmentDensity m_maps[2];  // plain, MIS-compensated
     Color m_mean{0.f};
     // The sun disc strategy (q = 0: none).
     Vec3 m_sun{0.f, 0.f, 1.f};
     float m_sun_cos = 1.f, m_sun_q = 0.f;
 
-    LightSample sample_map(Vec2 u) const;
-    float pdf_map(const Vec3& d) const;
+    LightSample sample_map(Vec2 u, const EnvironmentDensity& map) const;
+    float pdf_map(const Vec3& d, const EnvironmentDensity& map) const;
 };
 
 }  // namespace candela

@@ -24,12 +24,17 @@ inline LightSample light_sample_li(const Light& l, const LightSampleContext& ctx
     return std::visit([&](const auto& x) { return x.sample_li(ctx, u); }, l);
 }
 /// Samples light `l` from ctx with the `light_pdf` mode (only emissive triangles and area lights depend on it).
-inline LightSample light_sample_li(const Light& l, const LightSampleContext& ctx, Vec2 u, LightPdfMode mode) {
+/// `mis_compensated`: an environment samples its MIS-compensated map (next-event estimation combined with BSDF
+/// sampling by MIS: lights/environment_bake.h); every other light ignores it.
+inline LightSample light_sample_li(const Light& l, const LightSampleContext& ctx, Vec2 u, LightPdfMode mode,
+                                   bool mis_compensated = false) {
     return std::visit(
         [&](const auto& x) -> LightSample {
             using T = std::decay_t<decltype(x)>;
             if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>)
                 return x.sample_li(ctx, u, mode);
+            else if constexpr (std::is_same_v<T, WorldLight>)
+                return x.sample_li(ctx, u, mis_compensated);
             else
                 return x.sample_li(ctx, u);
         },
@@ -37,14 +42,15 @@ inline LightSample light_sample_li(const Light& l, const LightSampleContext& ctx
 }
 /// Solid-angle density with which light_sample_li(l, ctx, ·, mode) produces direction wi reaching the light at
 /// distance t (for MIS on BSDF-sampled hits). 0 for lights BSDF rays never hit (point, spot, sun).
-inline float light_pdf_li(const Light& l, const LightSampleContext& ctx, const Vec3& wi, float t, LightPdfMode mode) {
+inline float light_pdf_li(const Light& l, const LightSampleContext& ctx, const Vec3& wi, float t, LightPdfMode mode,
+                          bool mis_compensated = false) {
     return std::visit(
         [&](const auto& x) -> float {
             using T = std::decay_t<decltype(x)>;
             if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, TriangleLight>)
                 return x.pdf_li(ctx, wi, t, mode);
             else if constexpr (std::is_same_v<T, WorldLight>)
-                return x.pdf_li(wi);
+                return x.pdf_li(wi, mis_compensated);
             else
                 return 0.f;
         },

@@ -18,8 +18,9 @@ struct WorldLight {
     float scene_radius = 1.f;
     std::shared_ptr<const EnvironmentMap> environment;  // null: constant
 
-    LightSample sample_li(const LightSampleContext&, Vec2 u) const {
-        if (environment) return environment->sample(u);
+    /// `compensated`: the environment's MIS-compensated map (next-event estimation beside BSDF sampling).
+    LightSample sample_li(const LightSampleContext&, Vec2 u, bool compensated = false) const {
+        if (environment) return environment->sample(u, compensated);
         LightSample s;
         s.wi = sample_uniform_sphere(u);
         s.pdf = uniform_sphere_pdf();
@@ -27,7 +28,9 @@ struct WorldLight {
         s.Li = radiance;
         return s;
     }
-    float pdf_li(const Vec3& wi) const { return environment ? environment->pdf(wi) : uniform_sphere_pdf(); }
+    float pdf_li(const Vec3& wi, bool compensated = false) const {
+        return environment ? environment->pdf(wi, compensated) : uniform_sphere_pdf();
+    }
     Color Le(const Vec3& d) const { return environment ? environment->Le(d) : radiance; }
     float power() const { return 4.f * k_pi * k_pi * scene_radius * scene_radius * luminance(radiance); }
 };

@@ -21,6 +21,12 @@ public:
     size_t nv() const { return m_nv; }
     /// Mean weight (the integral of the step function over the unit square); 0 = nothing to sample.
     float integral() const { return m_marginal.integral(); }
+    /// Memory its tables take.
+    size_t bytes() const {
+        size_t b = m_marginal.bytes() + m_rows.capacity() * sizeof(Distribution1D);
+        for (const Distribution1D& r : m_rows) b += r.bytes();
+        return b;
+    }
 
     /// A point with density pdf(point) (written to *pdf); u in [0, 1)².
     Vec2 sample(Vec2 u, float* pdf) const;

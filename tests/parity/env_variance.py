@@ -1,6 +1,6 @@
 """Per-sample variance under a very bright sun in an HDR, Candela against Cycles in the same run (issue 22).
 
-    /usr/bin/python3.11 tests/parity/env_variance.py [--build build] [--out DIR] [--size 64] [--samples 128]
+    /usr/bin/python3.11 tests/parity/env_variance.py [--build build] [--out DIR] [--size 64] [--samples 128] [--quick]
 
 The scenes sun_hdr_linear and sun_hdr_closest (tests/parity/parity_scenes.py): a diffuse floor and sphere under a
 sky of radiance ~1 with a 2 × 2-texel sun of 160 000, read with Linear (Blender's default) and Closest
@@ -13,11 +13,11 @@ Pass: Candela's variance ≤ Cycles' + 3·√(s_candela² + s_cycles²) on each 
 estimates' noise (false-alarm rate ≈ 0.13 % per scene if the estimate's error is normal, which the mean over a few
 thousand pixels makes it nearly; heavy tails from fireflies widen s, they do not shrink it). Prints the ratios.
 
-Not in `make test` yet (`make env-variance`): the target is not met. Measured at 64 px, 128 spp (docs/textures.md):
-the centre-valued map gave 7300× Cycles' variance with Linear (1.3·10⁵ against 17.5); the filtered bake 18×; Closest
-1.27× before and after. What remains is the piecewise-constant density inside a cell against the bilinear ramp of
-the filtered sun (relative second moment 1.24² ≈ 1.53 for a 2 × 2-texel sun, i.e. a relative variance of about
-0.5 of the sun's term): sampling within a cell from the bilinear interpolant would remove it.
+Measured at 64 px, 128 spp (docs/textures.md), Candela / Cycles in one run: the centre-valued map gave 7300× with
+Linear; the integrated piecewise-constant map 18× (313.8 ± 14 against 17.49 ± 0.86) and 1.27× with Closest
+(17.98 ± 0.86 against 14.09 ± 0.77); the piecewise-bilinear map with MIS compensation (lights/environment_bake.h)
+0.42× with Linear (7.34 ± 0.78) and 0.51× with Closest (7.23 ± 0.67). `--quick` (32 px; `make test`, ctest
+env_variance_quick) runs the same check on a quarter of the pixels.
 """
 
 import argparse
@@ -51,10 +51,13 @@ def main(argv=None):
     ap.add_argument("--size", type=int, default=64)
     ap.add_argument("--samples", type=int, default=128, help="samples per pixel per engine, over two seeds")
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--quick", action="store_true", help="32 px (make test)")
     a = ap.parse_args(argv)
+    if a.quick:
+        a.size = 32
     a.out = Path(a.out or Path(a.build) / "env-variance")
     a.out.mkdir(parents=True, exist_ok=True)
-    a.scenes, a.reuse = SCENES, False
+    a.scenes, a.reuse, a.integrator = SCENES, False, "PATH"
     result = parity.render_all(a)
     native = parity.native_module(a.build)
     ok = True

@@ -25,6 +25,7 @@ namespace candela::pilot {
 constexpr float k_inf = std::numeric_limits<float>::infinity();
 constexpr MisHeuristic k_heuristic = MisHeuristic::Power;
 constexpr LightPdfMode k_pdf_mode = LightPdfMode::SolidAngle;
+constexpr bool k_mis_compensated = true;  // its next-event estimation is always combined with BSDF sampling by MIS
 constexpr int k_transmissive_probe_surfaces = 16;  // surfaces a blocked shadow ray's probe may cross
 constexpr int k_transparent_passes = 64;           // Transparent surfaces a pilot path may pass through
 constexpr int k_caustic_probes = 8;  // BSDF samples probing for caustics at a path's first non-delta vertex
@@ -287,8 +288,8 @@ private:
                       float dist) const {
         float w = 1.f;
         if (!last_delta) {
-            const float p_light =
-                m_sampler.nee_pmf(last_ctx, light) * light_pdf_li(m_lights[light], last_ctx, d, dist, k_pdf_mode);
+            const float p_light = m_sampler.nee_pmf(last_ctx, light) *
+                                  light_pdf_li(m_lights[light], last_ctx, d, dist, k_pdf_mode, k_mis_compensated);
             w = mis_weight(k_heuristic, last_pdf, p_light);
         }
         add_found(t, h, beta * Le * w);
@@ -301,7 +302,7 @@ private:
         const uint32_t li = m_sampler.select(ctx, u.next(), &pmf);
         const Vec2 ul = u.next2();
         if (!(pmf > 0.f)) return;
-        const LightSample ls = light_sample_li(m_lights[li], ctx, ul, k_pdf_mode);
+        const LightSample ls = light_sample_li(m_lights[li], ctx, ul, k_pdf_mode, k_mis_compensated);
         if (!ls.valid()) return;
         const Vec3 wi_local = v.frame.to_local(ls.wi);
         const float cos_g = dot(ls.wi, v.ng);

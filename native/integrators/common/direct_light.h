@@ -36,6 +36,11 @@ struct DirectLightRules {
     float ward_threshold = 0.05f;
 };
 
+/// Whether next-event estimation samples an environment's MIS-compensated map: when it is combined by MIS with
+/// BSDF sampling, which covers the directions where the environment is below its mean (Karlík et al. 2019;
+/// lights/environment_bake.h). Without MIS (LIGHT_ONLY) it must stand alone: the plain map.
+inline bool nee_for_mis(const DirectLightRules& rules) { return rules.light_sampling == LightSampling::Mis; }
+
 /// What a path's last scattering leaves for MIS at the emitter its ray finds.
 struct EmissionOrigin {
     bool specular = true;      // camera ray or delta scatter: emission counts with weight 1
@@ -53,7 +58,8 @@ inline __attribute__((always_inline)) float nee_density(const DirectLightRules& 
     const WardLightSampler* ward = sampler.ward();
     const float pmf = ward ? ward->adaptive_pmf(origin.point, index, size_t(origin.ward_tested))
                            : sampler.nee_pmf(origin.point, index);
-    return float(rules.light_samples) * pmf * light_pdf_li(lights[index], origin.point, d, t, rules.light_pdf);
+    return float(rules.light_samples) * pmf *
+           light_pdf_li(lights[index], origin.point, d, t, rules.light_pdf, nee_for_mis(rules));
 }
 
 /// MIS weight of emission found by a BSDF-sampled ray, against next-event estimation of density light_pdf.
@@ -84,7 +90,7 @@ inline __attribute__((always_inline)) DirectLightSample sample_direct_light_weig
     SpawnPoints& spawn, const LightSampleContext& ctx, const Bsdf& bsdf, const Vec3& wo_local, const Color& beta,
     uint32_t li, float pmf, Vec2 u, Weight&& weight, uint64_t& rays, const ShadowRayInputs* shadow = nullptr) {
     DirectLightSample out;
-    const LightSample ls = light_sample_li(scene.lights()[li], ctx, u, rules.light_pdf);
+    const LightSample ls = light_sample_li(scene.lights()[li], ctx, u, rules.light_pdf, nee_for_mis(rules));
     if (!ls.valid() || (rules.light_sampling == LightSampling::BsdfOnly && !ls.is_delta)) return out;
     const Vec3 wi_local = v.frame.to_local(ls.wi);
     // Both hemispheres (transmission); the geometric and shading sides must agree (no leaks) — except, as in Cycles,
