@@ -73,10 +73,10 @@ public:
         }
         const size_t from_prepass = cache.size(), prepass_gathers = m_candidates;
         render_passes(state);
-        ctx.log("irradiance cache: " + std::to_string(cache.size()) + " records (" + std::to_string(from_prepass) +
-                " from the pre-pass, " + std::to_string(cache.size() - from_prepass) +
-                " added while rendering; gathers: " + std::to_string(prepass_gathers) + " in the pre-pass, " +
-                std::to_string(m_candidates - prepass_gathers) + " while rendering)");
+        ctx.info("irradiance cache: " + std::to_string(cache.size()) + " records (" + std::to_string(from_prepass) +
+                 " from the pre-pass, " + std::to_string(cache.size() - from_prepass) +
+                 " added while rendering; gathers: " + std::to_string(prepass_gathers) + " in the pre-pass, " +
+                 std::to_string(m_candidates - prepass_gathers) + " while rendering)");
     }
     WorkBudget budget() const override { return {m_settings.pixel.samples, "sample"}; }
     // Motion blur: one shutter time per pass, with a cache of that time (render_moving).
@@ -126,9 +126,9 @@ private:
         const uint64_t time_key = hash_combine(m_settings.pixel.seed, 0x6963206d62ULL);
         std::vector<float> earlier(size_t(film.width()) * film.height(), 0.f);
         const GatherStrata strata = GatherStrata::for_rays(pass_settings.gather_rays);
-        ctx.log("irradiance cache: motion blur: " + std::to_string(passes) +
-                " shutter passes of one sample per pixel, each with a cache of its own time, gathers of " +
-                std::to_string(strata.count()) + " rays");
+        ctx.info("irradiance cache: motion blur: " + std::to_string(passes) +
+                 " shutter passes of one sample per pixel, each with a cache of its own time, gathers of " +
+                 std::to_string(strata.count()) + " rays");
         size_t records = 0;
         int64_t built = 0;
         ProgressivePlan plan;
@@ -162,8 +162,8 @@ private:
             },
             NoiseSource{});
         if (built > 0)
-            ctx.log("irradiance cache: " + std::to_string(records) + " records in " + std::to_string(built) +
-                    " caches (" + std::to_string(records / size_t(built)) + " per shutter pass)");
+            ctx.info("irradiance cache: " + std::to_string(records) + " records in " + std::to_string(built) +
+                     " caches (" + std::to_string(records / size_t(built)) + " per shutter pass)");
     }
 
     /// Inserts a pass's candidates (the cache is not read meanwhile) in raster order — by the full-frame pixel
