@@ -1,19 +1,22 @@
 #include "integrators/photon_map/sppm.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel_ordered.h"
 #include "core/rng.h"
 #include "integrators/camera_hit.h"
 #include "integrators/common/direct_light.h"
+#include "integrators/common/fixed_view_bsdf.h"
 #include "integrators/common/light_path.h"
 #include "integrators/common/lobe_classes.h"
 #include "integrators/common/surface_vertex.h"
 #include "integrators/common/vertex_bsdf.h"
 #include "integrators/photon_map/photon_shooting.h"
-#include "integrators/photon_map/radiance_estimate.h"
+#include "integrators/photon_map/visible_point_grid.h"
 #include "integrators/progressive_driver.h"
 #include "lights/light_sampler.h"
 #include "scene/shutter_time.h"
@@ -24,11 +27,15 @@ namespace {
 
 constexpr float k_inf = std::numeric_limits<float>::infinity();
 
+/// Photons per work item of the gather (their visible points are merged in item order).
+constexpr size_t k_gather_batch = 4096;
+
 struct VisiblePoint {
     SurfaceHit hit;
     Vec3 wo{0.f};
     Color beta{0.f};
     bool valid = false;
+    bool transmits = false;  // the estimated lobes transmit: photons from both sides count
 };
 
 struct SppmPixel {
@@ -160,6 +167,7 @@ private:
                 vp.wo = wo;
                 vp.beta = beta;
                 vp.valid = true;
+                vp.transmits = (part.flags() & k_bsdf_transmission) != 0;
                 return L;
             }
             beta /= 1.f - p_estimated;
@@ -212,13 +220,12 @@ private:
         if (m_ctx.cancel.cancelled()) return;
 
         // 2. Photons.
-        PhotonMap map;
+        PhotonShot shot;
         try {
             const ShutterScope scope(time);  // shoot_photons traces at the caller's time
             const PhotonTracer tracer(m_scene, m_emitters, m_photon_rules);
-            map = build_photon_map(shoot_photons(tracer, m_emitters, PhotonStore::Indirect, m_photons, m_s.pixel.seed,
-                                                 2 + it, m_ctx, "Tracing photons"),
-                                   m_ctx, "Building photon map");
+            shot = shoot_photons(tracer, m_emitters, PhotonStore::Indirect, m_photons, m_s.pixel.seed, 2 + it, m_ctx,
+                                 "Tracing photons");
         } catch (const Cancelled&) {
             m_ctx.counters.stage.end();
             return;
@@ -226,43 +233,106 @@ private:
         m_ctx.counters.stage.end();
         m_emitted += double(m_photons);
 
-        // 3. Statistics and the image.
+        // 3. Each photon's visible points (the grid), then per pixel its photons' flux and the statistics.
+        const Gathered g = gather(shot);
+        if (m_ctx.cancel.cancelled()) return;
+        update_pixels(it, time, shot, g);
+    }
+
+    /// The photons each visible point accepts: photons_of[start[i] .. start[i + 1]) for pixel i, in photon order.
+    struct Gathered {
+        std::vector<uint32_t> start, photons_of;
+    };
+
+    Gathered gather(const PhotonShot& shot) {
+        Gathered g;
+        const size_t pixels = m_pixels.size();
+        std::vector<GridPoint> points(pixels);
+        for (size_t i = 0; i < pixels; ++i) {
+            const SppmPixel& p = m_pixels[i];
+            if (!p.vp.valid) continue;
+            points[i].p = p.vp.hit.p;
+            points[i].radius2 = p.radius * p.radius;
+            if (!p.vp.transmits) points[i].normal = dot(p.vp.wo, p.vp.hit.ng) < 0.f ? -p.vp.hit.ng : p.vp.hit.ng;
+        }
+        VisiblePointGrid grid;
+        grid.build(points);
+        const std::vector<Photon>& photons = shot.photons;
+        g.start.assign(pixels + 1, 0u);
+        if (grid.empty() || photons.empty()) return g;
+        // Work items of k_gather_batch photons list their (pixel, photon) pairs in photon order; the items are
+        // concatenated in item order, then sorted by pixel stably: each pixel's photons in photon order, whatever
+        // the threads.
+        struct Pair {
+            uint32_t pixel, photon;
+        };
+        std::vector<Pair> pairs;
+        const size_t batches = (photons.size() + k_gather_batch - 1) / k_gather_batch;
+        m_ctx.counters.stage.begin("Gathering photons", int64_t(photons.size()));
+        parallel_ordered(
+            m_ctx.threads, batches, size_t(2 * resolve_thread_count(m_ctx.threads)),
+            [&](size_t b) {
+                std::vector<Pair> out;
+                const size_t end = std::min(photons.size(), (b + 1) * k_gather_batch);
+                for (size_t j = b * k_gather_batch; j < end; ++j) {
+                    const Photon& ph = photons[j];
+                    grid.query(ph.position(), decode_direction(ph.dir), [&](uint32_t i) {
+                        out.push_back({i, uint32_t(j)});
+                    });
+                }
+                return out;
+            },
+            [&](size_t b, std::vector<Pair>&& out) {
+                pairs.insert(pairs.end(), out.begin(), out.end());
+                m_ctx.counters.stage.set_done(int64_t(std::min(photons.size(), (b + 1) * k_gather_batch)));
+            },
+            &m_ctx.cancel);
+        m_ctx.counters.stage.end();
+        for (const Pair& q : pairs) ++g.start[q.pixel + 1];
+        for (size_t i = 0; i < pixels; ++i) g.start[i + 1] += g.start[i];
+        g.photons_of.resize(pairs.size());
+        std::vector<uint32_t> fill(g.start.begin(), g.start.end() - 1);
+        for (const Pair& q : pairs) g.photons_of[fill[q.pixel]++] = q.photon;
+        m_pairs += double(pairs.size());
+        return g;
+    }
+
+    void update_pixels(uint32_t it, float time, const PhotonShot& shot, const Gathered& g) {
+        const Film& film = m_film;
+        const auto& tiles = film.tiles();
         const float alpha = m_s.alpha;
         const LobeSubset estimated{m_s.alpha_threshold(), false};
+        const bool any = !g.photons_of.empty();
         parallel_for(m_ctx.threads, tiles.size(), [&](size_t t) {
             const ShutterScope scope(time);  // the visible points' shading at their iteration's time
             const Tile& tile = tiles[t];
-            std::vector<PhotonNeighbor> found;
             std::vector<PixelAccum> out(size_t(tile.width()) * tile.height());
             for (int y = tile.y0; y < tile.y1; ++y)
                 for (int x = tile.x0; x < tile.x1; ++x) {
-                    SppmPixel& p = m_pixels[size_t(y) * film.width() + x];
-                    if (p.vp.valid && !map.empty()) {
-                        const ShadingPoint sp = m_scene.shade(p.vp.hit, p.vp.wo);
-                        const VertexBsdf vb(m_scene, p.vp.hit, p.vp.wo, sp, &estimated);
+                    const size_t idx = size_t(y) * film.width() + x;
+                    SppmPixel& p = m_pixels[idx];
+                    const uint32_t b = any ? g.start[idx] : 0u, e = any ? g.start[idx + 1] : 0u;
+                    if (e > b) {
                         // The sphere, not Jensen's flattened disc: a sphere of radius r cuts a curved surface of
                         // radius R in a cap of area πr² exactly, so uniform irradiance has no bias at any radius.
-                        PhotonFilter filter = lookup_filter(vb, p.vp.wo);
-                        filter.flatten = 0.f;
-                        map.within(p.vp.hit.p, p.radius * p.radius, filter, found);
-                        if (!found.empty()) {
-                            Color phi(0.f);
-                            for (const PhotonNeighbor& nb : found) {
-                                const Photon& ph = map[nb.index];
-                                const Vec3 wp = decode_direction(ph.dir);
-                                phi += vb.f(p.vp.wo, wp) * vb.adjoint_factor(p.vp.wo, wp) * map.flux(ph);
-                            }
-                            const float m = float(found.size());
-                            const float n_new = p.n + alpha * m;
-                            const float r_new = p.radius * std::sqrt(n_new / (p.n + m));
-                            const float shrink = (r_new * r_new) / (p.radius * p.radius);
-                            if (is_finite(phi))
-                                p.tau = (p.tau + p.vp.beta * phi) * shrink;
-                            else
-                                p.tau = p.tau * shrink;
-                            p.n = n_new;
-                            p.radius = r_new;
+                        const ShadingPoint sp = m_scene.shade(p.vp.hit, p.vp.wo);
+                        const FixedViewBsdf fv(p.vp.hit, p.vp.wo, sp, &estimated);
+                        Color phi(0.f);
+                        for (uint32_t k = b; k < e; ++k) {
+                            const Photon& ph = shot.photons[g.photons_of[k]];
+                            phi += fv.f_adjoint(decode_direction(ph.dir)) * decode_flux(ph.flux);
                         }
+                        phi *= shot.flux_scale;
+                        const float m = float(e - b);
+                        const float n_new = p.n + alpha * m;
+                        const float r_new = p.radius * std::sqrt(n_new / (p.n + m));
+                        const float shrink = (r_new * r_new) / (p.radius * p.radius);
+                        if (is_finite(phi))
+                            p.tau = (p.tau + p.vp.beta * phi) * shrink;
+                        else
+                            p.tau = p.tau * shrink;
+                        p.n = n_new;
+                        p.radius = r_new;
                     }
                     const double iters = double(it) + 1.0;
                     const Color L =
@@ -295,6 +365,7 @@ private:
     std::vector<SppmPixel> m_pixels;
     int64_t m_photons = 0;
     double m_emitted = 0.0;
+    double m_pairs = 0.0;  // (visible point, photon) pairs gathered so far
 };
 
 }  // namespace
