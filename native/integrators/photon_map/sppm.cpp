@@ -374,6 +374,8 @@ void render_sppm(const SppmSettings& settings, const Scene& scene, Film& film, R
     Sppm(settings, scene, film, ctx).run();
 }
 
-double sppm_bytes_per_pixel() { return double(sizeof(SppmPixel)); }
+double sppm_bytes_per_pixel() {
+    return double(sizeof(SppmPixel) + sizeof(GridPoint) + 8 * sizeof(uint32_t) + 2 * sizeof(uint32_t));
+}
 
 }  // namespace candela
