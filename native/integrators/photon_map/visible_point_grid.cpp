@@ -69,7 +69,8 @@ void VisiblePointGrid::build(const std::vector<GridPoint>& points) {
     const size_t buckets = m_direct ? size_t(cells) : size_t(size);
     m_mask = size - 1;
 
-    // Each point's buckets (at most 27 cells, deduplicated), counted, then filled in increasing point index.
+    // Each point's buckets, deduplicated, counted, then filled in increasing point index. A box spans 2r ≤ 2 cells
+    // per axis, but its float ends can round past a cell boundary: up to 4 cells per axis, 64 in all.
     auto buckets_of = [&](const GridPoint& g, uint32_t* out) {
         const float r = listed_radius(g);
         int c0[3], c1[3];
@@ -90,7 +91,7 @@ void VisiblePointGrid::build(const std::vector<GridPoint>& points) {
         return count;
     };
     m_start.assign(buckets + 1, 0u);
-    uint32_t list[27];
+    uint32_t list[64];
     for (const GridPoint& g : m_points) {
         if (!in_grid(g)) continue;
         const int k = buckets_of(g, list);

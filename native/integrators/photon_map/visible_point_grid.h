@@ -4,7 +4,7 @@
 //
 // Cells are cubes of side the largest radius R of the points in the grid, over the points' bounding box. A point of
 // radius r ≤ R is listed in every cell its box [p − r, p + r] (r widened by a relative 10⁻⁴, so that a photon the
-// float distance test accepts never lies in a cell the point is missing from) overlaps: at most 3 per axis. Cells
+// float distance test accepts never lies in a cell the point is missing from) overlaps: at most 3 per axis (4 where the box's float ends round past a boundary). Cells
 // are hashed into a table of about twice as many buckets as points (a bucket may hold several cells: the distance
 // test sorts them out), stored as one array of point indices per bucket, ascending and without repeats.
 //
