@@ -5,11 +5,14 @@
 //     receives T·E₀ with T = 12/13 = 0.923077, all of it as photons (the sun's shadow rays stop at the glass);
 //   - the error's decay: on the slab the floor's radiance is uniform, so SPPM's estimate has no kernel bias and
 //     its mean squared error is its variance, which falls as i^(−α): RMSE slope −1/3 in log-log at α = 2/3;
+//   - the image means of the Cornell box and the glass sphere's caustic within 2 % of PATH's;
+//   - no noise estimate ("n/a") and no noise-threshold stop.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "agreement.h"
@@ -18,6 +21,7 @@
 #include "integrators/photon_map/visible_point_grid.h"
 #include "lights/light.h"
 #include "reference_scenes.h"
+#include "session/session.h"
 #include "test_helpers.h"
 
 namespace candela::test {
@@ -260,6 +264,94 @@ TEST(SppmConvergence, RmseFallsAsTheCubeRootOfIterations) {
                 -1.0 / 3.0);
     EXPECT_NEAR(slope, -1.0 / 3.0, 0.1);
     EXPECT_LT(se, 0.03);
+}
+
+// ---- agreement with PATH on the reference scenes -----------------------------------------------------------
+
+struct ReferenceCase {
+    const char* name;
+    SceneArrays arrays;
+    Params base;
+    int path_samples;
+};
+
+ReferenceCase reference_case(const char* name) {
+    const bool cornell = std::string(name) == "cornell";
+    Params p = basic_params(cornell ? 20 : 24, cornell ? 20 : 18, 0, cornell ? 5 : 6);
+    p.set("threads", int64_t(2));
+    p.set("pixel_filter", std::string("BLACKMAN_HARRIS"));
+    p.set("filter_width", 1.5);
+    p.set("rr_start_bounce", int64_t(2));
+    return {name, cornell ? cornell_box() : glass_caustic(), p, 4096};
+}
+
+RenderResult render_with(const ReferenceCase& c, const char* integrator, int samples, int64_t seed) {
+    Params p = c.base;
+    p.set("integrator", std::string(integrator));
+    p.set("samples", int64_t(samples));
+    p.set("seed", seed);
+    if (std::string(integrator) == "SPPM") p.set("sppm_photons", int64_t(30000));
+    return render(c.arrays, p);
+}
+
+// The target: SPPM's image mean within 2 % of PATH's after enough iterations (here 32 of 30 000 photon
+// paths), plus 3.5 standard errors of the noise: PATH's from its per-pixel variances, SPPM's from 8 seeds' spread
+// (their combination taken as t with 7 degrees of freedom: 3.50 is a two-sided 1 %). Resolution: the allowance is
+// about 3 %: a 10 % error in the photons' flux (the emitted paths counted 0.9 times: +2.4 % and +2.9 %) passes, a
+// 20 % one (0.8 times) fails on both (+4.8 % and +6.7 %).
+TEST(SppmAgreement, CornellBoxAndCausticWithinTwoPercentOfPath) {
+    const int seeds = 8;
+    for (const char* name : {"cornell", "caustic"}) {
+        const ReferenceCase c = reference_case(name);
+        const RenderResult path = render_with(c, "PATH", c.path_samples, 1);
+        // The RGB mean of each seed's image (PATH's mean_rgb; seed_mean is of luminance and the box is coloured).
+        std::vector<double> means;
+        for (int s = 1; s <= seeds; ++s) means.push_back(render_with(c, "SPPM", 32, s).mean_rgb);
+        SeedMean m;
+        for (double v : means) m.mean += v / seeds;
+        for (double v : means) m.standard_error += (v - m.mean) * (v - m.mean) / (seeds - 1);
+        m.standard_error = std::sqrt(m.standard_error / seeds);
+        const double rel = m.mean / path.mean_rgb - 1.0;
+        const double se = 3.5 * std::hypot(m.standard_error, path.standard_error) / path.mean_rgb;
+        std::printf("%s: PATH %.5f ± %.5f, SPPM %.5f ± %.5f: %+.4f (allowance 0.02 + %.4f)\n", name, path.mean_rgb,
+                    path.standard_error, m.mean, m.standard_error, rel, se);
+        EXPECT_LT(std::fabs(rel), 0.02 + se) << name;
+    }
+}
+
+// ---- the noise estimate must not lie ------------------------------------------------------------------------
+
+// SPPM's two half-images would share the photon statistics, so it has no noise estimate: the progress says so
+// ("n/a" in the status line, relative_error unknown), a noise threshold does not stop it, and the log says why.
+// The same threshold stops PATH (whose estimate is honest) early: the test would fail if SPPM reported one.
+TEST(SppmNoise, NoEstimateAndNoThresholdStop) {
+    for (const char* integrator : {"PATH", "SPPM"}) {
+        const bool sppm = std::string(integrator) == "SPPM";
+        Params p = slab_params(64, 2000, 2.0 / 3.0);
+        p.set("integrator", std::string(integrator));
+        p.set("noise_threshold", 0.5);
+        Session s(sppm ? glass_slab() : cornell_box(), p);
+        s.start();
+        s.join();
+        ASSERT_FALSE(s.error().has_value());
+        const SessionProgress pr = s.progress();
+        bool logged = false;
+        for (const std::string& l : s.take_log())
+            if (l.find("the noise threshold is off for this integrator") != std::string::npos) logged = true;
+        std::printf("%s: %lld of 64 samples, stop %s, relative error %.4f, noise unavailable %d\n", integrator,
+                    (long long)pr.work_done, stop_reason_name(pr.stop_reason), pr.relative_error,
+                    int(pr.noise_unavailable));
+        EXPECT_EQ(pr.noise_unavailable, sppm) << integrator;
+        EXPECT_EQ(logged, sppm) << integrator;
+        if (sppm) {
+            EXPECT_EQ(pr.stop_reason, StopReason::Samples);
+            EXPECT_EQ(pr.work_done, 64);
+            EXPECT_LT(pr.relative_error, 0.0);
+        } else {
+            EXPECT_EQ(pr.stop_reason, StopReason::NoiseThreshold);
+            EXPECT_GE(pr.relative_error, 0.0);
+        }
+    }
 }
 
 }  // namespace
