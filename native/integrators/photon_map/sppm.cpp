@@ -6,16 +6,15 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/parallel_ordered.h"
 #include "core/rng.h"
 #include "integrators/camera_hit.h"
 #include "integrators/common/direct_light.h"
-#include "integrators/common/fixed_view_bsdf.h"
 #include "integrators/common/light_path.h"
 #include "integrators/common/lobe_classes.h"
 #include "integrators/common/surface_vertex.h"
 #include "integrators/common/vertex_bsdf.h"
 #include "integrators/photon_map/photon_shooting.h"
+#include "integrators/photon_map/sppm_gather.h"
 #include "integrators/photon_map/visible_point_grid.h"
 #include "integrators/progressive_driver.h"
 #include "lights/light_sampler.h"
@@ -27,17 +26,6 @@ namespace {
 
 constexpr float k_inf = std::numeric_limits<float>::infinity();
 
-/// Photons per work item of the gather (their visible points are merged in item order).
-constexpr size_t k_gather_batch = 4096;
-
-struct VisiblePoint {
-    SurfaceHit hit;
-    Vec3 wo{0.f};
-    Color beta{0.f};
-    bool valid = false;
-    bool transmits = false;  // the estimated lobes transmit: photons from both sides count
-};
-
 struct SppmPixel {
     Color direct{0.f};  // Σ over iterations of emission + direct light
     Color tau{0.f};
@@ -46,7 +34,6 @@ struct SppmPixel {
     float radius = 0.f;
     Color shown{0.f};  // the estimate the film holds (L_(i−1))
     float shown_alpha = 0.f;
-    VisiblePoint vp;
     float vp_alpha = 1.f;
 };
 
@@ -59,7 +46,8 @@ public:
           m_ctx(ctx),
           m_emitters(scene.lights(), scene.bounds()),
           m_light_sampler(make_light_sampler("TREE", scene.lights())),
-          m_pixels(size_t(film.width()) * film.height()) {
+          m_pixels(size_t(film.width()) * film.height()),
+          m_points(m_pixels.size()) {
         m_rules.light_sampling = LightSampling::LightOnly;
         m_photon_rules.max_bounces = s.max_bounces;
         m_photon_rules.alpha_threshold = s.alpha_threshold();
@@ -204,8 +192,8 @@ private:
                     for (int x = tile.x0; x < tile.x1; ++x) {
                         SppmPixel& p = m_pixels[size_t(y) * film.width() + x];
                         float alpha = 1.f;
-                        Color L =
-                            camera_path(film.origin_x() + x, film.origin_y() + y, it, sampler, p.vp, &alpha, stats);
+                        Color L = camera_path(film.origin_x() + x, film.origin_y() + y, it, sampler,
+                                              m_points[size_t(y) * film.width() + x], &alpha, stats);
                         ++stats.paths;
                         if (!is_finite(L) || min_component(L) < 0.f) {
                             ++stats.nan_samples;
@@ -234,101 +222,34 @@ private:
         m_emitted += double(m_photons);
 
         // 3. Each photon's visible points (the grid), then per pixel its photons' flux and the statistics.
-        const Gathered g = gather(shot);
+        std::vector<float> radii(m_pixels.size());
+        for (size_t i = 0; i < m_pixels.size(); ++i) radii[i] = m_pixels[i].radius;
+        const PixelFlux flux = gather_flux(m_scene, m_points, radii, shot, m_s.alpha_threshold(), time, m_ctx);
         if (m_ctx.cancel.cancelled()) return;
-        update_pixels(it, time, shot, g);
+        update_pixels(it, flux);
     }
 
-    /// The photons each visible point accepts: photons_of[start[i] .. start[i + 1]) for pixel i, in photon order.
-    struct Gathered {
-        std::vector<uint32_t> start, photons_of;
-    };
-
-    Gathered gather(const PhotonShot& shot) {
-        Gathered g;
-        const size_t pixels = m_pixels.size();
-        std::vector<GridPoint> points(pixels);
-        for (size_t i = 0; i < pixels; ++i) {
-            const SppmPixel& p = m_pixels[i];
-            if (!p.vp.valid) continue;
-            points[i].p = p.vp.hit.p;
-            points[i].radius2 = p.radius * p.radius;
-            if (!p.vp.transmits) points[i].normal = dot(p.vp.wo, p.vp.hit.ng) < 0.f ? -p.vp.hit.ng : p.vp.hit.ng;
-        }
-        VisiblePointGrid grid;
-        grid.build(points);
-        const std::vector<Photon>& photons = shot.photons;
-        g.start.assign(pixels + 1, 0u);
-        if (grid.empty() || photons.empty()) return g;
-        // Work items of k_gather_batch photons list their (pixel, photon) pairs in photon order; the items are
-        // concatenated in item order, then sorted by pixel stably: each pixel's photons in photon order, whatever
-        // the threads.
-        struct Pair {
-            uint32_t pixel, photon;
-        };
-        std::vector<Pair> pairs;
-        const size_t batches = (photons.size() + k_gather_batch - 1) / k_gather_batch;
-        m_ctx.counters.stage.begin("Gathering photons", int64_t(photons.size()));
-        parallel_ordered(
-            m_ctx.threads, batches, size_t(2 * resolve_thread_count(m_ctx.threads)),
-            [&](size_t b) {
-                std::vector<Pair> out;
-                const size_t end = std::min(photons.size(), (b + 1) * k_gather_batch);
-                for (size_t j = b * k_gather_batch; j < end; ++j) {
-                    const Photon& ph = photons[j];
-                    grid.query(ph.position(), decode_direction(ph.dir), [&](uint32_t i) {
-                        out.push_back({i, uint32_t(j)});
-                    });
-                }
-                return out;
-            },
-            [&](size_t b, std::vector<Pair>&& out) {
-                pairs.insert(pairs.end(), out.begin(), out.end());
-                m_ctx.counters.stage.set_done(int64_t(std::min(photons.size(), (b + 1) * k_gather_batch)));
-            },
-            &m_ctx.cancel);
-        m_ctx.counters.stage.end();
-        for (const Pair& q : pairs) ++g.start[q.pixel + 1];
-        for (size_t i = 0; i < pixels; ++i) g.start[i + 1] += g.start[i];
-        g.photons_of.resize(pairs.size());
-        std::vector<uint32_t> fill(g.start.begin(), g.start.end() - 1);
-        for (const Pair& q : pairs) g.photons_of[fill[q.pixel]++] = q.photon;
-        m_pairs += double(pairs.size());
-        return g;
-    }
-
-    void update_pixels(uint32_t it, float time, const PhotonShot& shot, const Gathered& g) {
+    void update_pixels(uint32_t it, const PixelFlux& flux) {
         const Film& film = m_film;
         const auto& tiles = film.tiles();
         const float alpha = m_s.alpha;
-        const LobeSubset estimated{m_s.alpha_threshold(), false};
-        const bool any = !g.photons_of.empty();
         parallel_for(m_ctx.threads, tiles.size(), [&](size_t t) {
-            const ShutterScope scope(time);  // the visible points' shading at their iteration's time
             const Tile& tile = tiles[t];
             std::vector<PixelAccum> out(size_t(tile.width()) * tile.height());
             for (int y = tile.y0; y < tile.y1; ++y)
                 for (int x = tile.x0; x < tile.x1; ++x) {
                     const size_t idx = size_t(y) * film.width() + x;
                     SppmPixel& p = m_pixels[idx];
-                    const uint32_t b = any ? g.start[idx] : 0u, e = any ? g.start[idx + 1] : 0u;
-                    if (e > b) {
+                    if (flux.found[idx] > 0) {
                         // The sphere, not Jensen's flattened disc: a sphere of radius r cuts a curved surface of
                         // radius R in a cap of area πr² exactly, so uniform irradiance has no bias at any radius.
-                        const ShadingPoint sp = m_scene.shade(p.vp.hit, p.vp.wo);
-                        const FixedViewBsdf fv(p.vp.hit, p.vp.wo, sp, &estimated);
-                        Color phi(0.f);
-                        for (uint32_t k = b; k < e; ++k) {
-                            const Photon& ph = shot.photons[g.photons_of[k]];
-                            phi += fv.f_adjoint(decode_direction(ph.dir)) * decode_flux(ph.flux);
-                        }
-                        phi *= shot.flux_scale;
-                        const float m = float(e - b);
+                        const Color phi = flux.phi[idx];
+                        const float m = float(flux.found[idx]);
                         const float n_new = p.n + alpha * m;
                         const float r_new = p.radius * std::sqrt(n_new / (p.n + m));
                         const float shrink = (r_new * r_new) / (p.radius * p.radius);
                         if (is_finite(phi))
-                            p.tau = (p.tau + p.vp.beta * phi) * shrink;
+                            p.tau = (p.tau + m_points[idx].beta * phi) * shrink;
                         else
                             p.tau = p.tau * shrink;
                         p.n = n_new;
@@ -363,9 +284,9 @@ private:
     DirectLightRules m_rules;
     PhotonRules m_photon_rules;
     std::vector<SppmPixel> m_pixels;
+    std::vector<VisiblePoint> m_points;  // the pixels' visible points of the current iteration
     int64_t m_photons = 0;
     double m_emitted = 0.0;
-    double m_pairs = 0.0;  // (visible point, photon) pairs gathered so far
 };
 
 }  // namespace
@@ -375,7 +296,9 @@ void render_sppm(const SppmSettings& settings, const Scene& scene, Film& film, R
 }
 
 double sppm_bytes_per_pixel() {
-    return double(sizeof(SppmPixel) + sizeof(GridPoint) + 8 * sizeof(uint32_t) + 2 * sizeof(uint32_t));
+    // The pixel, its grid point, up to 8 cells' entries and its bucket start, its flux sums and its pair start.
+    return double(sizeof(SppmPixel) + sizeof(VisiblePoint) + sizeof(float) + sizeof(GridPoint) + 9 * sizeof(uint32_t) +
+                  sizeof(Color) + 2 * sizeof(uint32_t));
 }
 
 }  // namespace candela

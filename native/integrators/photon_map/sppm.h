@@ -6,8 +6,8 @@
 //      direct sum (common/direct_light.h, light sampling only: no BSDF ray of E counts emission);
 //   2. a photon pass of `photons_per_iteration` paths (photon_shooting.h, arrivals after ≥ 1 scattering: direct
 //      light is step 1's);
-//   3. each photon looks up the visible points whose spheres hold it in a hash grid over them
-//      (visible_point_grid.h: the sphere with the side check), and per pixel the M photons found add
+//   3. each photon looks up the visible points whose spheres hold it in a hash grid over them (sppm_gather.h,
+//      visible_point_grid.h: the sphere with the side check), and per pixel the M photons found add
 //      Φ = Σ β_i·f_E(w_i, w_p)·a·Φ_p (common/fixed_view_bsdf.h), and the statistics shrink (α the radius reduction,
 //      default 2/3):
 //         N' = N + αM,   R' = R·√(N'/(N + M)),   τ' = (τ + Φ)·R'²/R²,
@@ -20,9 +20,9 @@
 // as one entry. The estimates of the two noise replicates share the photon statistics, so the film's noise
 // estimate would lie: SPPM reports none ("n/a") and the noise-threshold stop is off (progressive_driver.h).
 // Determinism without atomics: the photons are gathered in fixed batches whose (pixel, photon) pairs are
-// concatenated in batch order and sorted stably by pixel, so every pixel sums its photons in photon index order;
-// every iteration's photons are a function of the seed and the iteration, so the image is the same for every
-// thread count.
+// concatenated in batch order and sorted stably by pixel, so every pixel sums its photons in photon index order
+// (sppm_gather.h); every iteration's photons are a function of the seed and the iteration, so the image is the same
+// for every thread count.
 #pragma once
 
 #include "integrators/integrator.h"
