@@ -5,12 +5,17 @@
 // shot without SPPM), so that SPPM's CPU time besides shooting is the camera pass and the gather. Prints one JSON
 // line per scene.
 //   candela_bench_sppm [--size W] [--iterations N] [--photons P] [--threads T] [--repeats R]
+// With --slope: the log-log slope of SPPM's RMSE against iterations (4 to 64) on both scenes at α = 2/3 and α = 1,
+// against PATH at --reference-samples (default 16384) samples per pixel on a 16-pixel-wide image, the reference's
+// own per-pixel variance (from its Noise pass) subtracted from the mean squared error.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <string>
+#include <vector>
 
 #include "integrators/photon_map/photon_shooting.h"
 #include "reference_scenes.h"
@@ -61,11 +66,67 @@ double shooting_cpu_seconds(const SceneArrays& arrays, const Params& p, int iter
     return cpu_now() - c0;
 }
 
+double luminance_of(const RenderResult& r, size_t i) {
+    return 0.2126 * r.rgba[4 * i] + 0.7152 * r.rgba[4 * i + 1] + 0.0722 * r.rgba[4 * i + 2];
+}
+
+/// Relative MSE of `r` against `ref` per pixel (luminance), less the reference's own variance.
+double relative_mse(const RenderResult& r, const RenderResult& ref) {
+    const size_t n = size_t(r.width) * r.height;
+    double se2 = 0.0, mean = 0.0, sum = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const double d = luminance_of(r, i) - luminance_of(ref, i);
+        sum += d * d;
+        se2 += double(ref.noise[i]) * ref.noise[i];
+        mean += luminance_of(ref, i);
+    }
+    mean /= double(n);
+    return (sum - se2) / double(n) / (mean * mean);
+}
+
+void slope_run(const char* name, int reference_samples, int64_t photons) {
+    const bool cornell = !std::strcmp(name, "cornell");
+    const SceneArrays arrays = cornell ? cornell_box() : glass_caustic();
+    Params p = basic_params(16, cornell ? 16 : 12, reference_samples, cornell ? 5 : 6);
+    p.set("threads", int64_t(2));
+    p.set("integrator", std::string("PATH"));
+    const RenderResult ref = render(arrays, p);
+    for (double alpha : {2.0 / 3.0, 1.0}) {
+        std::vector<double> xs, ys;
+        std::string points;
+        for (int it = 4; it <= 64; it *= 2) {
+            double mse = 0.0;
+            for (int seed = 1; seed <= 2; ++seed) {
+                Params q = p;
+                q.set("integrator", std::string("SPPM"));
+                q.set("samples", int64_t(it));
+                q.set("seed", int64_t(seed));
+                q.set("sppm_photons", photons);
+                q.set("sppm_alpha", alpha);
+                mse += 0.5 * relative_mse(render(arrays, q), ref);
+            }
+            xs.push_back(std::log(double(it)));
+            ys.push_back(0.5 * std::log(std::max(mse, 1e-30)));
+            points += (points.empty() ? "" : ", ") + std::to_string(std::sqrt(std::max(mse, 0.0)));
+        }
+        double mx = 0.0, my = 0.0, sxy = 0.0, sxx = 0.0;
+        for (size_t i = 0; i < xs.size(); ++i) mx += xs[i] / double(xs.size()), my += ys[i] / double(xs.size());
+        for (size_t i = 0; i < xs.size(); ++i) sxy += (xs[i] - mx) * (ys[i] - my), sxx += (xs[i] - mx) * (xs[i] - mx);
+        std::printf(
+            "{\"scene\": \"%s\", \"alpha\": %.4f, \"reference_samples\": %d, \"photons_per_iteration\": %lld, "
+            "\"relative_rmse_at_4_8_16_32_64\": [%s], \"rmse_slope\": %.4f}\n",
+            name, alpha, reference_samples, (long long)photons, points.c_str(), sxy / sxx);
+        std::fflush(stdout);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     int size = 64, iterations = 16, threads = 2, repeats = 2;
     int64_t photons = 100000;
+    bool slope = false;
+    int reference_samples = 16384;
     for (int i = 1; i < argc; ++i) {
         auto next = [&] { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--size"))
@@ -78,8 +139,16 @@ int main(int argc, char** argv) {
             threads = std::stoi(next());
         else if (!std::strcmp(argv[i], "--repeats"))
             repeats = std::stoi(next());
+        else if (!std::strcmp(argv[i], "--slope"))
+            slope = true;
+        else if (!std::strcmp(argv[i], "--reference-samples"))
+            reference_samples = std::stoi(next());
     }
     try {
+        if (slope) {
+            for (const char* name : {"cornell", "caustic"}) slope_run(name, reference_samples, photons);
+            return 0;
+        }
         for (const char* name : {"cornell", "caustic"}) {
             const bool cornell = !std::strcmp(name, "cornell");
             const SceneArrays arrays = cornell ? cornell_box() : glass_caustic();
