@@ -5,7 +5,7 @@
 // shot without SPPM), so that SPPM's CPU time besides shooting is the camera pass and the gather. Prints one JSON
 // line per scene.
 //   candela_bench_sppm [--size W] [--iterations N] [--photons P] [--threads T] [--repeats R]
-// With --slope: the log-log slope of SPPM's RMSE against iterations (4 to 64) on both scenes at α = 2/3 and α = 1,
+// With --slope: the log-log slope of SPPM's RMSE against iterations (--from 4 to --to 64, doubling) on both scenes at α = 2/3 and α = 1,
 // against PATH at --reference-samples (default 16384) samples per pixel on a 16-pixel-wide image, the reference's
 // own per-pixel variance (from its Noise pass) subtracted from the mean squared error.
 #include <algorithm>
@@ -84,7 +84,7 @@ double relative_mse(const RenderResult& r, const RenderResult& ref) {
     return (sum - se2) / double(n) / (mean * mean);
 }
 
-void slope_run(const char* name, int reference_samples, int64_t photons) {
+void slope_run(const char* name, int reference_samples, int64_t photons, int from, int to) {
     const bool cornell = !std::strcmp(name, "cornell");
     const SceneArrays arrays = cornell ? cornell_box() : glass_caustic();
     Params p = basic_params(16, cornell ? 16 : 12, reference_samples, cornell ? 5 : 6);
@@ -94,7 +94,7 @@ void slope_run(const char* name, int reference_samples, int64_t photons) {
     for (double alpha : {2.0 / 3.0, 1.0}) {
         std::vector<double> xs, ys;
         std::string points;
-        for (int it = 4; it <= 64; it *= 2) {
+        for (int it = from; it <= to; it *= 2) {
             double mse = 0.0;
             for (int seed = 1; seed <= 2; ++seed) {
                 Params q = p;
@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
     int size = 64, iterations = 16, threads = 2, repeats = 2;
     int64_t photons = 100000;
     bool slope = false;
-    int reference_samples = 16384;
+    int reference_samples = 16384, from = 4, to = 64;
     for (int i = 1; i < argc; ++i) {
         auto next = [&] { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--size"))
@@ -141,12 +141,16 @@ int main(int argc, char** argv) {
             repeats = std::stoi(next());
         else if (!std::strcmp(argv[i], "--slope"))
             slope = true;
+        else if (!std::strcmp(argv[i], "--from"))
+            from = std::stoi(next());
+        else if (!std::strcmp(argv[i], "--to"))
+            to = std::stoi(next());
         else if (!std::strcmp(argv[i], "--reference-samples"))
             reference_samples = std::stoi(next());
     }
     try {
         if (slope) {
-            for (const char* name : {"cornell", "caustic"}) slope_run(name, reference_samples, photons);
+            for (const char* name : {"cornell", "caustic"}) slope_run(name, reference_samples, photons, from, to);
             return 0;
         }
         for (const char* name : {"cornell", "caustic"}) {

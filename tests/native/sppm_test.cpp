@@ -323,7 +323,8 @@ TEST(SppmAgreement, CornellBoxAndCausticWithinTwoPercentOfPath) {
 // ---- determinism -------------------------------------------------------------------------------------------
 
 // The same image for 1 and 2 threads when the gather takes several rounds (sppm_gather.h: a radius of 0.3 on the
-X
+// slab's floor puts about 100 visible points on each photon: by estimate some 5 M pairs per iteration against a
+// round's 4 M, and the first round is 8 batches).
 // A wrong input fails it: rounds sized by the thread count (8 batches per thread: the same sums grouped
 // differently) give images that differ in their last bits.
 TEST(SppmDeterminism, SameImageForEveryThreadCountOverSeveralGatherRounds) {
