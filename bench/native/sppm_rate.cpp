@@ -114,8 +114,8 @@ void slope_run(const char* name, int reference_samples, int64_t photons, int fro
         for (size_t i = 0; i < xs.size(); ++i) sxy += (xs[i] - mx) * (ys[i] - my), sxx += (xs[i] - mx) * (xs[i] - mx);
         std::printf(
             "{\"scene\": \"%s\", \"alpha\": %.4f, \"reference_samples\": %d, \"photons_per_iteration\": %lld, "
-            "\"relative_rmse_at_4_8_16_32_64\": [%s], \"rmse_slope\": %.4f}\n",
-            name, alpha, reference_samples, (long long)photons, points.c_str(), sxy / sxx);
+            "\"iterations\": [%d, %d], \"relative_rmse\": [%s], \"rmse_slope\": %.4f}\n",
+            name, alpha, reference_samples, (long long)photons, from, to, points.c_str(), sxy / sxx);
         std::fflush(stdout);
     }
 }
