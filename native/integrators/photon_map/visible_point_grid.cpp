@@ -65,11 +65,11 @@ void VisiblePointGrid::build(const std::vector<GridPoint>& points) {
     }
     uint32_t size = 1;
     while (size < 2 * n) size <<= 1;
-    m_direct = cells <= double(size);
+    m_direct = cells <= 4.0 * double(size);  // at most 4 bucket starts per hashed bucket: no hashing
     const size_t buckets = m_direct ? size_t(cells) : size_t(size);
     m_mask = size - 1;
 
-    // Each point's buckets, deduplicated, counted, then filled in increasing point index. A box spans 2r ≤ 2 cells
+    // Each point's buckets counted, then filled in increasing point index. A box spans 2r ≤ 2 cells
     // per axis, but its float ends can round past a cell boundary: up to 4 cells per axis, 64 in all.
     auto buckets_of = [&](const GridPoint& g, uint32_t* out) {
         const float r = listed_radius(g);
@@ -84,10 +84,9 @@ void VisiblePointGrid::build(const std::vector<GridPoint>& points) {
         int c[3];
         for (c[2] = c0[2]; c[2] <= c1[2]; ++c[2])
             for (c[1] = c0[1]; c[1] <= c1[1]; ++c[1])
-                for (c[0] = c0[0]; c[0] <= c1[0]; ++c[0]) {
-                    const uint32_t bk = bucket(c);
-                    if (std::find(out, out + count, bk) == out + count) out[count++] = bk;
-                }
+                for (c[0] = c0[0]; c[0] <= c1[0]; ++c[0]) out[count++] = bucket(c);
+        // Hashed, two of the cells may share a bucket: the point is then listed twice there, next to itself (a
+        // bucket's points are in increasing index), and query() skips the repeat.
         return count;
     };
     m_start.assign(buckets + 1, 0u);

@@ -5,8 +5,9 @@
 // Cells are cubes of side the largest radius R of the points in the grid, over the points' bounding box. A point of
 // radius r ≤ R is listed in every cell its box [p − r, p + r] (r widened by a relative 10⁻⁴, so that a photon the
 // float distance test accepts never lies in a cell the point is missing from) overlaps: at most 3 per axis (4 where the box's float ends round past a boundary). Cells
-// are hashed into a table of about twice as many buckets as points (a bucket may hold several cells: the distance
-// test sorts them out), stored as one array of point indices per bucket, ascending and without repeats.
+// are indexed directly while there are at most 8–16 per point, else hashed into a table of about twice as many buckets
+// as points (a bucket may hold several cells: the distance test sorts them out, and a point two of whose cells share
+// a bucket is listed there twice, next to itself), stored as one array of point indices per bucket, ascending.
 //
 // A photon at x arriving from direction w (unit, toward where it came from) is accepted by point i if
 //     |x − p_i|² ≤ r_i²   and, for a point with a side normal n_i (a surface that does not transmit), w·n_i > 0,
@@ -48,8 +49,11 @@ public:
         int c[3];
         if (!cell_of(x, c)) return;
         const uint32_t b = bucket(c);
+        uint32_t last = UINT32_MAX;
         for (uint32_t k = m_start[b], end = m_start[b + 1]; k < end; ++k) {
             const uint32_t i = m_entries[k];
+            if (i == last) continue;  // listed twice: two of its cells share the bucket
+            last = i;
             if (accepts(i, x, w)) visit(i);
         }
     }
