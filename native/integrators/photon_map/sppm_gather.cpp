@@ -41,7 +41,11 @@ Gathered gather(const VisiblePointGrid& grid, size_t points, const std::vector<P
     struct Batch {
         std::vector<Pair> pairs;
     };
-    std::vector<Pair> pairs;
+    // The consumer counts each batch's pairs per point while later batches are still being gathered, and keeps
+    // the batches (moved, in order) for the fill.
+    Gathered g;
+    g.start.assign(points + 1, 0u);
+    std::vector<Batch> kept(b1 - b0);
     parallel_ordered(
         ctx.threads, b1 - b0, size_t(2 * resolve_thread_count(ctx.threads)),
         [&](size_t k) {
@@ -56,17 +60,16 @@ Gathered gather(const VisiblePointGrid& grid, size_t points, const std::vector<P
             return out;
         },
         [&](size_t k, Batch&& out) {
-            pairs.insert(pairs.end(), out.pairs.begin(), out.pairs.end());
+            for (const Pair& q : out.pairs) ++g.start[q.point + 1];
+            kept[k] = std::move(out);
             ctx.counters.stage.set_done(int64_t(std::min(photons.size(), (b0 + k + 1) * k_gather_batch)));
         },
         &ctx.cancel);
-    Gathered g;
-    g.start.assign(points + 1, 0u);
-    for (const Pair& q : pairs) ++g.start[q.point + 1];
     for (size_t i = 0; i < points; ++i) g.start[i + 1] += g.start[i];
-    g.photons_of.resize(pairs.size());
+    g.photons_of.resize(g.start[points]);
     std::vector<uint32_t> fill(g.start.begin(), g.start.end() - 1);
-    for (const Pair& q : pairs) g.photons_of[fill[q.point]++] = q.photon;
+    for (const Batch& batch : kept)
+        for (const Pair& q : batch.pairs) g.photons_of[fill[q.point]++] = q.photon;
     return g;
 }
 
