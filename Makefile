@@ -112,6 +112,9 @@ SANITIZE_SKIP := AnalyticLights.SphereLightLightSamplingToAFewTenthsOfAPercent \
     PathGenerators.EqualPathTracingWithPointSpotAndSunLights \
     PhotonAgreement.PhotonAndSppmMatchPathInARoom \
     PhotonFurnace.PhotonAndSppmInThePointLightSphere \
+    SppmAgreement.CornellBoxAndCausticWithinTwoPercentOfPath \
+    SppmConvergence.RmseFallsAsTheCubeRootOfIterations \
+    SppmSlab.FloorUnderAGlassSlabReceivesTwelveThirteenths \
     VeachMis.StrategiesAgreeAndMisHasTheLeastVarianceOnEveryPlate \
     VertexBsdf.LightSideSamplesFollowTheirDensity \
     VertexBsdf.LightSideSamplingCoversThePathBsdf

@@ -66,7 +66,7 @@ def status_line(integrator, progress):
     "Irradiance Cache | Irradiance cache 41 % | 1234 records | Elapsed 00:04"); the integrator's note (its record
     count) stays in the line while it renders. When the native side names the method itself (AUTO's choice and
     reason, "Auto: BDPT — caustic paths ..."), that replaces the name."""
-    name = integrator.replace("_", " ").title() if integrator != "BDPT" else "BDPT"
+    name = integrator.replace("_", " ").title() if integrator not in ("BDPT", "SPPM") else integrator
     name = progress.get("method") or name
     elapsed = float(progress.get("elapsed_s", 0.0))
     phase = progress.get("phase", "rendering")
@@ -92,6 +92,8 @@ def status_line(integrator, progress):
     error = progress.get("relative_error")
     if error is not None:
         line += f" | Noise {100.0 * error:.1f} %"
+    elif progress.get("noise_unavailable"):  # SPPM: its two half-images share photons, so no honest estimate
+        line += " | Noise n/a"
     stop = progress.get("stop_reason") or ""
     if stop and stop != "samples":
         line += f" | Stopped: {stop}"
@@ -249,6 +251,8 @@ def summary_line(session, progress, width, height):
     error = progress.get("relative_error")
     if error is not None:
         what += f", estimated noise {100.0 * error:.2f} %"
+    elif progress.get("noise_unavailable"):
+        what += ", noise estimate n/a"
     return f"Candela: rendered {width}x{height}, {what} in {seconds:.2f} s ({rate:.1f} samples/s)"
 
 

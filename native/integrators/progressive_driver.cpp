@@ -11,6 +11,7 @@ StopReason run_progressive(RenderContext& ctx, const ProgressivePlan& plan, cons
     using clock = std::chrono::steady_clock;
     auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
     ctx.counters.work_total = plan.total;
+    ctx.counters.noise_unavailable = !noise;
     if (plan.noise_threshold > 0.0 && !noise)
         ctx.log("the noise threshold is off for this integrator: its noise estimate would not be honest");
     const bool noise_stop = plan.noise_threshold > 0.0 && noise;

@@ -84,6 +84,8 @@ struct RenderCounters {
     std::atomic<uint64_t> rays{0};             // rays cast (camera, bounce and shadow rays)
     std::atomic<uint64_t> nan_samples{0};      // non-finite or negative samples dropped before the film
     std::atomic<double> relative_error{-1.0};  // estimated relative RMSE of the image; < 0 = not known (yet)
+    // The integrator has no honest noise estimate (SPPM: sppm.h): the status shows "n/a", not "not known yet".
+    std::atomic<bool> noise_unavailable{false};
     std::atomic<int> stop_reason{int(StopReason::Running)};
     StageProgress stage;
     MethodNote method;

@@ -374,6 +374,7 @@ PYBIND11_MODULE(_native, m) {
                  d["fraction"] = p.fraction;
                  d["elapsed_s"] = p.elapsed_s;
                  d["relative_error"] = p.relative_error >= 0.0 ? py::object(py::float_(p.relative_error)) : py::none();
+                 d["noise_unavailable"] = p.noise_unavailable;  // no honest estimate: the status shows "n/a"
                  d["stop_reason"] = stop_reason_name(p.stop_reason);
                  return d;
              })

@@ -171,6 +171,7 @@ SessionProgress Session::progress() const {
     p.method = m_counters.method.get();
     p.fraction = p.work_total > 0 ? double(p.work_done) / double(p.work_total) : 0.0;
     p.relative_error = m_counters.relative_error;
+    p.noise_unavailable = m_counters.noise_unavailable;
     p.stop_reason = StopReason(m_counters.stop_reason.load());
     if (m_phase == SessionPhase::Done) p.fraction = 1.0;
     if (m_started) p.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start_time).count();

@@ -33,8 +33,9 @@ struct SessionProgress {
     StageProgress::Snapshot stage;  // a named stage with its own progress (a pre-pass), or none
     std::string method;             // the method the status names when not the chosen integrator (AUTO's choice)
     double fraction = 0.0;
-    double elapsed_s = 0.0;        // since start()
-    double relative_error = -1.0;  // estimated relative RMSE of the image (< 0: not known yet)
+    double elapsed_s = 0.0;          // since start()
+    double relative_error = -1.0;    // estimated relative RMSE of the image (< 0: not known yet)
+    bool noise_unavailable = false;  // the integrator has no honest noise estimate: "n/a" (relative_error stays < 0)
     StopReason stop_reason = StopReason::Running;
 };
 

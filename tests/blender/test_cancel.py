@@ -112,6 +112,15 @@ def test_status_line_shows_noise_and_why_the_render_stopped():
         "Path | Sample 48/1024 | Elapsed 00:03 | Noise 2.0 % | Stopped: noise threshold"
 
 
+def test_status_line_says_noise_n_a_without_an_honest_estimate():
+    progress = {"phase": "rendering", "samples_done": 5, "samples_total": 10, "fraction": 0.5, "elapsed_s": 2.0,
+                "relative_error": None, "noise_unavailable": True}
+    assert render_loop.status_line("SPPM", progress) == \
+        "SPPM | Sample 5/10 | Elapsed 00:02 | Noise n/a | Remaining 00:02"
+    progress["noise_unavailable"] = False  # not known yet (before the first pass): nothing shown
+    assert render_loop.status_line("PATH", progress) == "Path | Sample 5/10 | Elapsed 00:02 | Remaining 00:02"
+
+
 def test_status_line_shows_a_stage_in_percent_and_the_integrators_note():
     progress = {"phase": "rendering", "stage": "Irradiance cache", "stage_done": 41, "stage_total": 100,
                 "stage_percent": True, "note": "1234 records", "elapsed_s": 4.0}

@@ -11,6 +11,7 @@
 
 #include "chi2.h"
 #include "core/rng.h"
+#include "integrators/common/fixed_view_bsdf.h"
 #include "integrators/common/vertex_bsdf.h"
 #include "test_helpers.h"
 
@@ -133,6 +134,38 @@ TEST(VertexBsdf, TheBsdfIsTheSameWhicheverSideShadedFirst) {
         EXPECT_EQ(luminance(from_a.f(a, b)), luminance(from_b.f(a, b))) << c.closure;
         EXPECT_EQ(luminance(from_a.f(b, a)), luminance(from_b.f(b, a))) << c.closure;
     }
+}
+
+// The gather's precomputed camera side (common/fixed_view_bsdf.h) is VertexBsdf's f·a for its w_c, on both sides,
+// with tilted shading normals (where the frame switches to ng below ns, and directions leak), with and without the
+// estimated-lobe subset. Relative 1e-5: the two compute the local frame's cosines in different orders of operations.
+// A wrong input fails it: the adjoint factor left out (tried by hand: fails at the first tilted diffuse case).
+TEST(VertexBsdf, FixedViewEqualsTheVertexBsdf) {
+    Pcg32 rng(21, 4);
+    const LobeSubset estimated{0.f, false};
+    size_t nonzero = 0, leaked = 0;
+    for (const Case& c : k_cases) {
+        Fixture fx(c);
+        for (int i = 0; i < 64; ++i) {
+            const Vec3 wc = normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f));
+            for (const LobeSubset* subset : {static_cast<const LobeSubset*>(nullptr), &estimated}) {
+                const ShadingPoint sp = fx.scene->shade(fx.hit, wc);
+                const VertexBsdf vb(*fx.scene, fx.hit, wc, sp, subset);
+                const FixedViewBsdf fv(fx.hit, wc, sp, subset);
+                for (int j = 0; j < 16; ++j) {
+                    const Vec3 wl =
+                        normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f));
+                    const float want = luminance(vb.f(wc, wl)) * vb.adjoint_factor(wc, wl);
+                    const float got = luminance(fv.f_adjoint(wl));
+                    ASSERT_NEAR(got, want, 1e-5f * std::fabs(want) + 1e-12f) << c.closure << " tilt " << c.tilt;
+                    if (want > 0.f) ++nonzero;
+                    if (want == 0.f && luminance(vb.f(wc, wl)) == 0.f) ++leaked;
+                }
+            }
+        }
+    }
+    EXPECT_GT(nonzero, 1000u);
+    EXPECT_GT(leaked, 100u);
 }
 
 }  // namespace

@@ -269,3 +269,12 @@ def test_irradiance_cache_cancels_within_100_ms_in_the_pre_pass(native):
     print(f"irradiance cache pre-pass cancel latency {latency * 1000:.1f} ms")
     assert latency < 0.1, f"cancel took {latency * 1000:.0f} ms"
     assert s.progress()["phase"] == "cancelled" and s.progress()["stop_reason"] == "cancelled"
+
+
+def test_sppm_reports_no_noise_estimate_and_path_does(native):
+    """SPPM's two half-images share photons: no honest noise estimate, so the progress says "unavailable" (the status
+    line shows n/a); PATH's estimate is there once a pass is done."""
+    sppm = render(native, box_scene(), params(integrator="SPPM", samples=2, sppm_photons=2000))
+    assert sppm.progress()["noise_unavailable"] is True and sppm.progress()["relative_error"] is None
+    path = render(native, box_scene(), params())
+    assert path.progress()["noise_unavailable"] is False and path.progress()["relative_error"] is not None

@@ -1,5 +1,6 @@
 #include "integrators/photon_map/sppm.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -13,7 +14,8 @@
 #include "integrators/common/surface_vertex.h"
 #include "integrators/common/vertex_bsdf.h"
 #include "integrators/photon_map/photon_shooting.h"
-#include "integrators/photon_map/radiance_estimate.h"
+#include "integrators/photon_map/sppm_gather.h"
+#include "integrators/photon_map/visible_point_grid.h"
 #include "integrators/progressive_driver.h"
 #include "lights/light_sampler.h"
 #include "scene/shutter_time.h"
@@ -24,13 +26,6 @@ namespace {
 
 constexpr float k_inf = std::numeric_limits<float>::infinity();
 
-struct VisiblePoint {
-    SurfaceHit hit;
-    Vec3 wo{0.f};
-    Color beta{0.f};
-    bool valid = false;
-};
-
 struct SppmPixel {
     Color direct{0.f};  // Σ over iterations of emission + direct light
     Color tau{0.f};
@@ -39,7 +34,6 @@ struct SppmPixel {
     float radius = 0.f;
     Color shown{0.f};  // the estimate the film holds (L_(i−1))
     float shown_alpha = 0.f;
-    VisiblePoint vp;
     float vp_alpha = 1.f;
 };
 
@@ -52,7 +46,8 @@ public:
           m_ctx(ctx),
           m_emitters(scene.lights(), scene.bounds()),
           m_light_sampler(make_light_sampler("TREE", scene.lights())),
-          m_pixels(size_t(film.width()) * film.height()) {
+          m_pixels(size_t(film.width()) * film.height()),
+          m_points(m_pixels.size()) {
         m_rules.light_sampling = LightSampling::LightOnly;
         m_photon_rules.max_bounces = s.max_bounces;
         m_photon_rules.alpha_threshold = s.alpha_threshold();
@@ -160,6 +155,7 @@ private:
                 vp.wo = wo;
                 vp.beta = beta;
                 vp.valid = true;
+                vp.transmits = (part.flags() & k_bsdf_transmission) != 0;
                 return L;
             }
             beta /= 1.f - p_estimated;
@@ -196,8 +192,8 @@ private:
                     for (int x = tile.x0; x < tile.x1; ++x) {
                         SppmPixel& p = m_pixels[size_t(y) * film.width() + x];
                         float alpha = 1.f;
-                        Color L =
-                            camera_path(film.origin_x() + x, film.origin_y() + y, it, sampler, p.vp, &alpha, stats);
+                        Color L = camera_path(film.origin_x() + x, film.origin_y() + y, it, sampler,
+                                              m_points[size_t(y) * film.width() + x], &alpha, stats);
                         ++stats.paths;
                         if (!is_finite(L) || min_component(L) < 0.f) {
                             ++stats.nan_samples;
@@ -212,13 +208,12 @@ private:
         if (m_ctx.cancel.cancelled()) return;
 
         // 2. Photons.
-        PhotonMap map;
+        PhotonShot shot;
         try {
             const ShutterScope scope(time);  // shoot_photons traces at the caller's time
             const PhotonTracer tracer(m_scene, m_emitters, m_photon_rules);
-            map = build_photon_map(shoot_photons(tracer, m_emitters, PhotonStore::Indirect, m_photons, m_s.pixel.seed,
-                                                 2 + it, m_ctx, "Tracing photons"),
-                                   m_ctx, "Building photon map");
+            shot = shoot_photons(tracer, m_emitters, PhotonStore::Indirect, m_photons, m_s.pixel.seed, 2 + it, m_ctx,
+                                 "Tracing photons");
         } catch (const Cancelled&) {
             m_ctx.counters.stage.end();
             return;
@@ -226,43 +221,39 @@ private:
         m_ctx.counters.stage.end();
         m_emitted += double(m_photons);
 
-        // 3. Statistics and the image.
+        // 3. Each photon's visible points (the grid), then per pixel its photons' flux and the statistics.
+        std::vector<float> radii(m_pixels.size());
+        for (size_t i = 0; i < m_pixels.size(); ++i) radii[i] = m_pixels[i].radius;
+        const PixelFlux flux = gather_flux(m_scene, m_points, radii, shot, m_s.alpha_threshold(), time, m_ctx);
+        if (m_ctx.cancel.cancelled()) return;
+        update_pixels(it, flux);
+    }
+
+    void update_pixels(uint32_t it, const PixelFlux& flux) {
+        const Film& film = m_film;
+        const auto& tiles = film.tiles();
         const float alpha = m_s.alpha;
-        const LobeSubset estimated{m_s.alpha_threshold(), false};
         parallel_for(m_ctx.threads, tiles.size(), [&](size_t t) {
-            const ShutterScope scope(time);  // the visible points' shading at their iteration's time
             const Tile& tile = tiles[t];
-            std::vector<PhotonNeighbor> found;
             std::vector<PixelAccum> out(size_t(tile.width()) * tile.height());
             for (int y = tile.y0; y < tile.y1; ++y)
                 for (int x = tile.x0; x < tile.x1; ++x) {
-                    SppmPixel& p = m_pixels[size_t(y) * film.width() + x];
-                    if (p.vp.valid && !map.empty()) {
-                        const ShadingPoint sp = m_scene.shade(p.vp.hit, p.vp.wo);
-                        const VertexBsdf vb(m_scene, p.vp.hit, p.vp.wo, sp, &estimated);
+                    const size_t idx = size_t(y) * film.width() + x;
+                    SppmPixel& p = m_pixels[idx];
+                    if (flux.found[idx] > 0) {
                         // The sphere, not Jensen's flattened disc: a sphere of radius r cuts a curved surface of
                         // radius R in a cap of area πr² exactly, so uniform irradiance has no bias at any radius.
-                        PhotonFilter filter = lookup_filter(vb, p.vp.wo);
-                        filter.flatten = 0.f;
-                        map.within(p.vp.hit.p, p.radius * p.radius, filter, found);
-                        if (!found.empty()) {
-                            Color phi(0.f);
-                            for (const PhotonNeighbor& nb : found) {
-                                const Photon& ph = map[nb.index];
-                                const Vec3 wp = decode_direction(ph.dir);
-                                phi += vb.f(p.vp.wo, wp) * vb.adjoint_factor(p.vp.wo, wp) * map.flux(ph);
-                            }
-                            const float m = float(found.size());
-                            const float n_new = p.n + alpha * m;
-                            const float r_new = p.radius * std::sqrt(n_new / (p.n + m));
-                            const float shrink = (r_new * r_new) / (p.radius * p.radius);
-                            if (is_finite(phi))
-                                p.tau = (p.tau + p.vp.beta * phi) * shrink;
-                            else
-                                p.tau = p.tau * shrink;
-                            p.n = n_new;
-                            p.radius = r_new;
-                        }
+                        const Color phi = flux.phi[idx];
+                        const float m = float(flux.found[idx]);
+                        const float n_new = p.n + alpha * m;
+                        const float r_new = p.radius * std::sqrt(n_new / (p.n + m));
+                        const float shrink = (r_new * r_new) / (p.radius * p.radius);
+                        if (is_finite(phi))
+                            p.tau = (p.tau + m_points[idx].beta * phi) * shrink;
+                        else
+                            p.tau = p.tau * shrink;
+                        p.n = n_new;
+                        p.radius = r_new;
                     }
                     const double iters = double(it) + 1.0;
                     const Color L =
@@ -293,6 +284,7 @@ private:
     DirectLightRules m_rules;
     PhotonRules m_photon_rules;
     std::vector<SppmPixel> m_pixels;
+    std::vector<VisiblePoint> m_points;  // the pixels' visible points of the current iteration
     int64_t m_photons = 0;
     double m_emitted = 0.0;
 };
@@ -303,6 +295,10 @@ void render_sppm(const SppmSettings& settings, const Scene& scene, Film& film, R
     Sppm(settings, scene, film, ctx).run();
 }
 
-double sppm_bytes_per_pixel() { return double(sizeof(SppmPixel)); }
+double sppm_bytes_per_pixel() {
+    // The pixel, its grid point, up to 8 cells' entries and its bucket start, its flux sums and its pair start.
+    return double(sizeof(SppmPixel) + sizeof(VisiblePoint) + sizeof(float) + sizeof(GridPoint) + 9 * sizeof(uint32_t) +
+                  sizeof(Color) + 2 * sizeof(uint32_t));
+}
 
 }  // namespace candela
