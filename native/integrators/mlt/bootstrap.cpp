@@ -55,47 +55,84 @@ std::vector<Bootstrap> run_bootstraps(const PathSpace& space, const MltSettings&
     return boots;
 }
 
+std::vector<int> allocate_chains(const std::vector<double>& depth_sum, int n) {
+    const size_t D = depth_sum.size();
+    std::vector<int> count(D, 0);
+    int lit = 0;
+    double total = 0.0;
+    for (double v : depth_sum) {
+        lit += v > 0.0;
+        total += v;
+    }
+    if (!(total > 0.0) || lit > n) return count;
+    // One chain per lit depth, the rest by largest remainder of their quotas ∝ b_k (ties to the lower depth).
+    const int rest = n - lit;
+    std::vector<double> remainder(D, -1.0);
+    int given = 0;
+    for (size_t k = 0; k < D; ++k) {
+        if (!(depth_sum[k] > 0.0)) continue;
+        const double quota = double(rest) * depth_sum[k] / total;
+        const int whole = std::min(rest - given, int(quota));
+        count[k] = 1 + whole;
+        given += whole;
+        remainder[k] = quota - double(whole);
+    }
+    while (given < rest) {
+        size_t best = 0;
+        for (size_t k = 1; k < D; ++k)
+            if (remainder[k] > remainder[best]) best = k;
+        ++count[best];
+        remainder[best] = -1.0;
+        ++given;
+    }
+    return count;
+}
+
+namespace {
+
+/// Systematic resampling: `count` of the entries `first`, `first` + `stride`, … (`n` of them, importance sum `sum` >
+/// 0) at the positions (j + ξ)/count of their cumulative importance, each with `weight`.
+void systematic(const std::vector<float>& importance, size_t first, size_t stride, size_t n, double sum, int count,
+                double xi, double weight, std::vector<ChainStart>& out) {
+    size_t i = 0, last = 0;  // last: the last entry with importance (where rounding past the end lands)
+    for (size_t j = 0; j < n; ++j)
+        if (importance[first + j * stride] > 0.f) last = j;
+    double cum = 0.0;  // importance of the entries before i
+    for (int c = 0; c < count; ++c) {
+        const double x = (double(c) + xi) / double(count) * sum;
+        // The first entry whose cumulative importance passes x (zero-importance entries are never chosen).
+        while (i < n && !(cum + double(importance[first + i * stride]) > x)) cum += importance[first + i++ * stride];
+        out.push_back({first + std::min(i, last) * stride, weight});
+    }
+}
+
+double uniform_of(uint64_t seed, int population, uint64_t stratum) {
+    Pcg32 rng(mix64(hash_values(seed ^ 0x6d6c747374726174ULL, uint64_t(population), stratum)), 0x737973ULL);
+    return double(rng.next_float());
+}
+
+}  // namespace
+
 std::vector<ChainStart> resample_chain_starts(const Bootstrap& boot, int n, uint64_t seed, int population) {
-    // Depth-major order: the cumulative importance passes depth 0's states, then depth 1's, ...
     const size_t D = size_t(boot.depths), paths = size_t(boot.paths);
     std::vector<double> depth_sum(D, 0.0);
-    for (size_t e = 0; e < boot.importance.size(); ++e) depth_sum[e % D] += boot.importance[e];
     double total = 0.0;
+    for (size_t e = 0; e < boot.importance.size(); ++e) depth_sum[e % D] += boot.importance[e];
     for (double v : depth_sum) total += v;
     std::vector<ChainStart> starts;
     if (!(total > 0.0) || n <= 0) return starts;
-    Pcg32 rng(mix64(hash_values(seed ^ 0x6d6c747374726174ULL, uint64_t(population), 11u)), 0x737973ULL);
-    const double xi = double(rng.next_float());
-    std::vector<int> count(D, 0);
-    std::vector<int> depth_of_start;
-    size_t d = 0, i = 0;
-    double cum = 0.0;  // importance of the entries before (d, i)
-    for (int c = 0; c < n; ++c) {
-        const double x = (double(c) + xi) / double(n) * total;
-        // The first entry whose cumulative importance passes x (zero-importance entries are never chosen).
-        while (d < D) {
-            const double I = boot.importance[i * D + d];
-            if (cum + I > x) break;
-            cum += I;
-            if (++i == paths) i = 0, ++d;
-        }
-        if (d == D) {  // rounding past the end: the last entry with importance
-            d = D - 1, i = paths - 1;
-            while (!(boot.importance[i * D + d] > 0.f)) {
-                if (i == 0) i = paths, --d;
-                --i;
-            }
-        }
-        starts.push_back({i * D + d, 0.0});
-        depth_of_start.push_back(int(d));
-        ++count[d];
+    const std::vector<int> count = allocate_chains(depth_sum, n);
+    int allocated = 0;
+    for (int c : count) allocated += c;
+    if (allocated == 0) {  // more lit depths than chains: one systematic resampling over all, weight b
+        systematic(boot.importance, 0, 1, boot.importance.size(), total, n, uniform_of(seed, population, D),
+                   total / double(paths), starts);
+        return starts;
     }
-    const double b = total / double(paths);
-    for (size_t c = 0; c < starts.size(); ++c) {
-        const size_t k = size_t(depth_of_start[c]);
-        const double expected = double(n) * depth_sum[k] / total;
-        starts[c].weight = expected >= 1.0 ? depth_sum[k] / double(paths) * double(n) / double(count[k]) : b;
-    }
+    for (size_t k = 0; k < D; ++k)
+        if (count[k] > 0)
+            systematic(boot.importance, k, D, paths, depth_sum[k], count[k], uniform_of(seed, population, k),
+                       depth_sum[k] / double(paths) * double(n) / double(count[k]), starts);
     return starts;
 }
 

@@ -7,12 +7,16 @@
 // noise replicate c mod 2), and each population has its own bootstrap (its own states, its own b): the two
 // replicate images then differ by the error of b too, so the noise estimate from their difference includes it.
 //
-// Stratified resampling. A population's N chains take the bootstrap states at the N evenly spaced positions
-// (i + ξ)/N of the cumulative importance (systematic resampling, one uniform ξ), the states ordered depth-major:
-// depth k gets n_k = ⌊N·b_k/b⌋ or ⌈N·b_k/b⌉ chains instead of a multinomial count. A chain at depth k splats with
-// weight w_k = b_k·N/n_k when its expected count e_k = N·b_k/b is at least 1 (then n_k ≥ 1 always, and depth k's
-// image is b_k times the mean of its chains, without the rounding of n_k), else w_k = b (n_k ∈ {0, 1} with
-// P(n_k = 1) = e_k: unbiased over ξ). For PSSMLT every chain splats with b.
+// Stratified resampling. A population's N chains are shared among the depths with light by a fixed allocation: one
+// chain each, the rest in proportion to b_k (largest remainder), so depth k gets n_k ≥ 1 chains, about N·b_k/b,
+// instead of a multinomial count whose error no number of mutations would reduce. Within depth k the n_k chains
+// take the states at the evenly spaced positions (j + ξ_k)/n_k of depth k's cumulative importance (systematic
+// resampling, one uniform ξ_k), and a chain at depth k splats with weight w_k = b_k·N/n_k: depth k's image is b_k
+// times the mean over its chains, and since each of them starts at a state distributed ∝ I over depth k's bootstrap
+// states (marginally, over ξ_k) and that b_k is their mean importance, the image is unbiased from the first mutation
+// (Veach 1997, §11.3.3, per depth). For PSSMLT (one depth) every chain splats with b. With more lit depths than chains
+// (not with the defaults) one systematic resampling over all states, in index order, and weight b
+// (unbiased over ξ, but each depth's chain count is random).
 #pragma once
 
 #include <cstdint>
@@ -53,7 +57,10 @@ struct ChainStart {
     size_t entry = 0;
     double weight = 0.0;
 };
-/// Population `population`'s `n` chain starts by stratified resampling (none if its b is 0).
+/// The chains per depth: n_k of `n` for the depths' importance sums `depth_sum` (all 0 when b = 0 or there are
+/// more lit depths than chains).
+std::vector<int> allocate_chains(const std::vector<double>& depth_sum, int n);
+/// Population `population`'s `n` chain starts by stratified resampling, in depth order (none if its b is 0).
 std::vector<ChainStart> resample_chain_starts(const Bootstrap& boot, int n, uint64_t seed, int population);
 
 }  // namespace candela
