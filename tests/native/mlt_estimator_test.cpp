@@ -178,11 +178,11 @@ TEST(MltEstimator, MultiplexedPerDepthBrightnessIsThePerDepthBdptImage) {
 
 TEST(MltEstimator, EqualBdptOnTheGlassCaustic) {
     // The caustic light → glass → glass → floor under a small light (reference_scenes.h), max bounces 5, 16 × 12
-    // pixels: MLT and MMLT (128 mutations per pixel) against BDPT (64 samples), 8 seeds each (expect_agree).
+    // pixels: MLT and MMLT (256 mutations per pixel) against BDPT (128 samples), 8 seeds each (expect_agree).
     const SceneArrays caustic = glass_caustic();
-    const Params bdpt = base_params("BDPT", 64);
-    expect_agree(caustic, base_params("MLT", 128), bdpt, "MLT, glass caustic");
-    expect_agree(caustic, base_params("MMLT", 128), bdpt, "MMLT, glass caustic");
+    const Params bdpt = base_params("BDPT", 128);
+    expect_agree(caustic, base_params("MLT", 256), bdpt, "MLT, glass caustic");
+    expect_agree(caustic, base_params("MMLT", 256), bdpt, "MMLT, glass caustic");
 }
 
 }  // namespace
