@@ -3,12 +3,15 @@
 // as the mutations grow, for two bootstrap sizes — whether the bootstrap's error in b is the floor — and the film's
 // own noise estimate beside it (docs/metropolis.md). The reference is two independent BDPT halves; its own noise
 // (a quarter of their squared difference, per pixel) is subtracted from every mean squared error. Every figure is the
-// mean over 8 seeds (± its standard error from their spread, by the delta method); times are wall clock on whatever the machine does.
+// mean over 8 seeds (± its standard error from their spread, by the delta method); times are wall clock on whatever
+// the machine does. Environment: MLT_FLOOR_SEEDS (8), MLT_FLOOR_FIRST_SEED (1), MLT_FLOOR_ONLY ("MMLT 20000": one
+// configuration).
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -16,6 +19,11 @@
 
 namespace candela::test {
 namespace {
+
+int env_int(const char* name, int fallback) {
+    const char* v = std::getenv(name);
+    return v ? std::atoi(v) : fallback;
+}
 
 double lum(const RenderResult& x, size_t i) {
     return 0.2126 * x.rgba[4 * i] + 0.7152 * x.rgba[4 * i + 1] + 0.0722 * x.rgba[4 * i + 2];
@@ -46,12 +54,14 @@ TEST(MltFloor, DISABLED_DoorSceneErrorAgainstMutationsAndBootstrap) {
         const char* integrator;
         int bootstrap;
     };
+    const char* only = std::getenv("MLT_FLOOR_ONLY");  // e.g. "MMLT 20000"
     for (const Config& c : {Config{"BDPT", 0}, Config{"MLT", 20000}, Config{"MLT", 160000}, Config{"MMLT", 20000},
                             Config{"MMLT", 160000}}) {
+        if (only && std::string(only) != std::string(c.integrator) + " " + std::to_string(c.bootstrap)) continue;
         for (int samples : {64, 256, 1024}) {
             double mse = 0.0, mse2 = 0.0, secs = 0.0, estimate = 0.0;
-            constexpr int k_seeds = 8;
-            for (int seed = 1; seed <= k_seeds; ++seed) {
+            const int k_seeds = env_int("MLT_FLOOR_SEEDS", 8), first = env_int("MLT_FLOOR_FIRST_SEED", 1);
+            for (int seed = first; seed < first + k_seeds; ++seed) {
                 Params p = base;
                 p.set("integrator", std::string(c.integrator));
                 p.set("samples", int64_t(samples));
