@@ -3,7 +3,8 @@
 // 2. seed sweep: on the door scene 8 seeds with a small and 8 with a large bootstrap agree with each other and BDPT;
 // 3. MMLT's strategy choice: its pmf sums to 1 at every depth and its frequencies pass χ²;
 // 4. MMLT's per-depth b_k equal the per-depth BDPT image sums (BDPT's strategy images);
-// 5. the glass caustic: MLT and MMLT equal BDPT.
+// 5. the glass caustic: MLT and MMLT equal BDPT;
+// 6. the two chain populations' bootstraps are independent (their b differ by the spread of independent estimates).
 // Comparisons of renders are by the spread over independent seeds (agreement.h, the method of mlt_test.cpp).
 #include <gtest/gtest.h>
 
@@ -110,6 +111,36 @@ TEST(MltEstimator, MultiplexedStrategyPmfSumsToOneAndIsWhatTheChoiceDraws) {
             const double p = chi2_survival(chi2, n - 1);
             EXPECT_GT(p, 1e-4) << "depth " << depth << ": χ² " << chi2 << " with " << n - 1 << " dof";
         }
+    }
+}
+
+TEST(MltEstimator, ChainPopulationsHaveIndependentBootstraps) {
+    // The film's two noise replicates are the two chain populations; for their difference to include the error of
+    // b, each has its own bootstrap. Over 32 seeds, with b_0, b_1 the populations' b (1 000 paths each, the Cornell
+    // box): independent estimates of equal variance σ² give Var(b_0 − b_1) = 2σ² and Var((b_0 + b_1)/2) = σ²/2, so
+    // F = Var(b_0 − b_1) / (4·Var((b_0 + b_1)/2)) is F(31, 31)-distributed: within [0.293, 3.41] (two-sided 1e-3).
+    // One shared bootstrap gives F = 0; correlation ρ gives F ≈ (1 − ρ)/(1 + ρ).
+    const SceneArrays box = cornell_box();
+    for (const char* name : {"MLT", "MMLT"}) {
+        std::vector<double> diff, mean;
+        for (int seed = 1; seed <= 32; ++seed) {
+            Params p = basic_params(16, 12, 1, 2);
+            p.set("integrator", std::string(name));
+            p.set("seed", int64_t(seed));
+            p.set("mlt_bootstrap", int64_t(2000));
+            const Scene scene(box, p, nullptr);
+            const MltBootstrap boot = mlt_bootstrap(scene, p, 2);
+            ASSERT_EQ(boot.b_population.size(), 2u);
+            diff.push_back(boot.b_population[0] - boot.b_population[1]);
+            mean.push_back(0.5 * (boot.b_population[0] + boot.b_population[1]));
+        }
+        const MeanAndError d = mean_and_error(diff), m = mean_and_error(mean);
+        const double F = (d.standard_error * d.standard_error) / (4.0 * m.standard_error * m.standard_error);
+        std::printf("%s: b %.5f ± %.5f, population difference %.5f ± %.5f, F %.3f\n", name, m.mean, m.standard_error,
+                    d.mean, d.standard_error, F);
+        EXPECT_GT(F, 0.293) << name << ": the populations' bootstraps are not independent";
+        EXPECT_LT(F, 3.41) << name;
+        EXPECT_LT(std::fabs(d.mean), 4.0 * d.standard_error) << name << ": the populations estimate different b";
     }
 }
 
