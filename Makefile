@@ -105,6 +105,8 @@ SANITIZE_SKIP := AnalyticLights.SphereLightLightSamplingToAFewTenthsOfAPercent \
     Mlt.EqualsPathTracingOnTheDoorScene \
     Mlt.FurnaceImageAndBootstrapBrightnessAreTheClosedForm \
     Mlt.MultiplexedPerDepthBrightnessSumsToTheWholeSamplesB \
+    MltEstimator.EqualBdptOnTheGlassCaustic \
+    MltEstimator.SeedSweepOnTheDoorSceneAgreesForTwoBootstrapSizes \
     MotionBlur.PhotonAndIrradianceCacheAgreeWithPathOnAMovingBox \
     NoiseEstimate.IsHonestForEverySamplerOnTheRoom \
     NoiseEstimate.IsHonestForLightTracingBdptAndThePathGenerators \

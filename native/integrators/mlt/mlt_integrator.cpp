@@ -10,65 +10,31 @@
 
 #include "core/parallel.h"
 #include "core/parallel_ordered.h"
+#include "integrators/mlt/bootstrap.h"
 #include "integrators/mlt/markov_chain.h"
 #include "integrators/mlt/mlt_settings.h"
-#include "sampling/distribution_1d.h"
 
 namespace candela {
 
 namespace {
 
-uint64_t state_key(uint64_t seed, uint64_t index, int depth) {
-    return hash_values(seed ^ 0x6d6c74626f6f74ULL, index, uint64_t(depth + 1));
-}
+static_assert(k_mlt_populations == int(k_noise_replicates), "a chain population per noise replicate");
+
 uint64_t chain_key(uint64_t seed, uint64_t chain) { return hash_values(seed ^ 0x6d6c74636861ULL, chain, 7u); }
 
-/// The bootstrap: n independent states per depth (PSSMLT: one "depth", −1), their importances in index order
-/// (entry i·D + d for path i at depth d), so b and the resampling are the same for any thread count.
-struct Bootstrap {
-    std::vector<float> importance;
-    int depths = 1;  // D
-    bool multiplexed = false;
-    int depth_of(size_t entry) const { return multiplexed ? int(entry % size_t(depths)) : -1; }
-    uint64_t index_of(size_t entry) const { return uint64_t(entry / size_t(depths)); }
-};
-
-Bootstrap run_bootstrap(const PathSpace& space, const MltSettings& s, bool multiplexed, uint64_t seed, int threads,
-                        RenderCounters& counters, const CancelToken* cancel) {
-    Bootstrap boot;
-    boot.multiplexed = multiplexed;
-    boot.depths = multiplexed ? space.max_depth() + 1 : 1;
-    const size_t n = size_t(s.bootstrap) * size_t(boot.depths);
-    boot.importance.assign(n, 0.f);
-    constexpr size_t k_chunk = 1024;
-    counters.stage.begin("Bootstrap paths", int64_t(n));
-    std::atomic<int64_t> done{0};
-    parallel_for(
-        threads, (n + k_chunk - 1) / k_chunk,
-        [&](size_t chunk) {
-            PrimarySampleSampler u(s.sigma, s.large_step);
-            MltSample sample;
-            PathStats stats;
-            for (size_t e = chunk * k_chunk; e < std::min(n, (chunk + 1) * k_chunk); ++e) {
-                bootstrap_sample(space, state_key(seed, boot.index_of(e), boot.depth_of(e)), boot.depth_of(e), u, stats,
-                                 sample);
-                boot.importance[e] = sample.importance;
-            }
-            stats.flush(counters);
-            counters.stage.set_done(std::min(int64_t(n), done.fetch_add(int64_t(k_chunk)) + int64_t(k_chunk)));
-        },
-        cancel);
-    counters.stage.end();
-    return boot;
-}
-
-MltBootstrap summarise(const Bootstrap& boot, int bootstrap_paths) {
+/// What the tests and the log see: the populations' b and b_k averaged (each is an estimate from half the paths).
+MltBootstrap summarise(const std::vector<Bootstrap>& boots) {
     MltBootstrap out;
-    out.b_depth.assign(size_t(boot.depths), 0.0);
-    for (size_t e = 0; e < boot.importance.size(); ++e) out.b_depth[e % size_t(boot.depths)] += boot.importance[e];
-    for (double& v : out.b_depth) {
-        v /= double(bootstrap_paths);
-        out.b += v;
+    for (const Bootstrap& boot : boots) {
+        const std::vector<double> bk = boot.b_depth();
+        out.b_depth.resize(bk.size(), 0.0);
+        double b = 0.0;
+        for (size_t k = 0; k < bk.size(); ++k) {
+            out.b_depth[k] += bk[k] / double(boots.size());
+            b += bk[k];
+        }
+        out.b_population.push_back(b);
+        out.b += b / double(boots.size());
     }
     return out;
 }
@@ -94,33 +60,39 @@ public:
                     ": objects hidden from diffuse, glossy or transmission rays are visible to "
                     "light subpaths and connections (only camera and shadow visibility are honoured)");
         const PathSpace space(scene, m_settings.bdpt, emitters);
-        const Bootstrap boot =
-            run_bootstrap(space, m_settings, m_multiplexed, ps.seed, ctx.threads, ctx.counters, &ctx.cancel);
+        const std::vector<Bootstrap> boots =
+            run_bootstraps(space, m_settings, m_multiplexed, ps.seed, ctx.threads, ctx.counters, &ctx.cancel);
         if (ctx.cancel.cancelled()) {  // cancelled during the bootstrap: no chain, an empty image
             ctx.counters.work_total = ps.samples;
             ctx.counters.stop_reason = int(StopReason::Cancelled);
             return;
         }
-        const MltBootstrap summary = summarise(boot, m_settings.bootstrap);
-        const double b = summary.b;
+        const MltBootstrap summary = summarise(boots);
 
-        // The chains' starting states: bootstrap entries resampled ∝ I (each chain its own uniform).
-        std::vector<MarkovChain> chains;
-        if (b > 0.0) {
-            const Distribution1D pick(boot.importance);
+        // The chains' starting states and splat weights (bootstrap.h): chain c = p + 2i is start i of population
+        // p. A population whose bootstrap found no light has no chains: its mutations count, black.
+        std::vector<std::unique_ptr<MarkovChain>> chains(size_t(m_settings.chains));
+        std::vector<double> weight(chains.size(), 0.0);
+        {
             PathStats stats;
-            chains.reserve(size_t(m_settings.chains));
-            for (int c = 0; c < m_settings.chains; ++c) {
-                Pcg32 rng(mix64(chain_key(ps.seed, uint64_t(c))), 0x7069636bULL);
-                const size_t e = pick.sample_discrete(rng.next_float());
-                chains.emplace_back(space, m_settings.sigma, m_settings.large_step,
-                                    state_key(ps.seed, boot.index_of(e), boot.depth_of(e)), boot.depth_of(e),
-                                    chain_key(ps.seed, uint64_t(c)), stats);
+            const int per = m_settings.chains / k_mlt_populations;
+            for (int pop = 0; pop < k_mlt_populations; ++pop) {
+                const Bootstrap& boot = boots[size_t(pop)];
+                const std::vector<ChainStart> starts = resample_chain_starts(boot, per, ps.seed, pop);
+                for (size_t i = 0; i < starts.size(); ++i) {
+                    const size_t c = size_t(pop) + size_t(k_mlt_populations) * i;
+                    const size_t e = starts[i].entry;
+                    chains[c] = std::make_unique<MarkovChain>(
+                        space, m_settings.sigma, m_settings.large_step,
+                        bootstrap_state_key(ps.seed, pop, boot.index_of(e), boot.depth_of(e)), boot.depth_of(e),
+                        chain_key(ps.seed, uint64_t(c)), stats);
+                    weight[c] = starts[i].weight;
+                }
             }
             stats.flush(ctx.counters);
-        } else {
-            ctx.log(std::string(name) + ": no bootstrap path carries light (b = 0): the image is black");
         }
+        if (!(summary.b > 0.0))
+            ctx.log(std::string(name) + ": no bootstrap path carries light (b = 0): the image is black");
 
         const double frame_pixels = double(scene.camera().full_width()) * scene.camera().full_height();
         const uint64_t n_chains = uint64_t(m_settings.chains);
@@ -141,20 +113,15 @@ public:
             ctx, plan,
             [&](int64_t begin, int64_t end) {
                 const uint64_t lo = uint64_t(double(begin) * frame_pixels), hi = uint64_t(double(end) * frame_pixels);
-                if (chains.empty()) {  // black: count the mutations all the same (an opaque, finished film)
-                    double samples[k_noise_replicates] = {};
-                    samples[0] = double(hi - lo) / space.raster_area();
-                    film.add_splats(SplatBuffer(), ps.filter, samples);
-                    return;
-                }
                 parallel_ordered(
                     ctx.threads, chains.size(), size_t(2 * resolve_thread_count(ctx.threads)),
                     [&](size_t c) {
                         ChainPass out;
                         PathStats stats;
                         const int64_t n = int64_t(share(hi, c) - share(lo, c));
-                        out.done = chains[c].run(n, b, uint32_t(c % k_noise_replicates), out.buffer, stats, out.counts,
-                                                 &ctx.cancel);
+                        out.done = chains[c] ? chains[c]->run(n, weight[c], uint32_t(c % k_noise_replicates),
+                                                              out.buffer, stats, out.counts, &ctx.cancel)
+                                             : n;
                         stats.flush(ctx.counters);
                         return out;
                     },
@@ -172,10 +139,11 @@ public:
         const uint64_t mutations = total.accepted + total.rejected;
         char line[256];
         std::snprintf(line, sizeof line,
-                      "%s: b = %.6g from %d bootstrap paths%s, %d chains, %llu mutations, %.1f %% accepted "
+                      "%s: b = %.6g (populations %.6g, %.6g) from %d bootstrap paths%s, %d chains, %llu mutations, "
+                      "%.1f %% accepted "
                       "(%llu accepted, %llu rejected, %.1f %% large steps)",
-                      name, b, m_settings.bootstrap, m_multiplexed ? " per depth" : "", m_settings.chains,
-                      (unsigned long long)mutations,
+                      name, summary.b, summary.b_population[0], summary.b_population[1], m_settings.bootstrap,
+                      m_multiplexed ? " per depth" : "", m_settings.chains, (unsigned long long)mutations,
                       mutations ? 100.0 * double(total.accepted) / double(mutations) : 0.0,
                       (unsigned long long)total.accepted, (unsigned long long)total.rejected,
                       mutations ? 100.0 * double(total.large_steps) / double(mutations) : 0.0);
@@ -217,7 +185,7 @@ MltBootstrap mlt_bootstrap(const Scene& scene, const Params& params, int threads
     const EmitterSet emitters(scene.lights(), scene.bounds());
     const PathSpace space(scene, s.bdpt, emitters);
     RenderCounters counters;
-    return summarise(run_bootstrap(space, s, multiplexed, s.bdpt.pixel.seed, threads, counters, nullptr), s.bootstrap);
+    return summarise(run_bootstraps(space, s, multiplexed, s.bdpt.pixel.seed, threads, counters, nullptr));
 }
 
 }  // namespace candela

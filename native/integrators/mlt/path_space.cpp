@@ -7,6 +7,18 @@
 
 namespace candela {
 
+int mmlt_strategy_count(int depth) { return depth == 0 ? 1 : depth + 2; }
+
+StrategyChoice mmlt_choose_strategy(int depth, float u) {
+    const int n = mmlt_strategy_count(depth);
+    return {std::min(int(u * float(n)), n - 1), 1.f / float(n)};
+}
+
+float mmlt_strategy_pmf(int depth, int s) {
+    const int n = mmlt_strategy_count(depth);
+    return s >= 0 && s < n ? 1.f / float(n) : 0.f;
+}
+
 PathSpace::PathSpace(const Scene& scene, const BdptSettings& settings, const EmitterSet& emitters)
     : m_tracer(scene, settings, emitters),
       m_camera(scene.camera()),
@@ -41,12 +53,12 @@ void PathSpace::evaluate(PrimarySampleSampler& u, int depth, PathStats& stats, M
     if (depth < 0) {
         m_tracer.sample_all(ray, u, stats, out.contributions);
     } else {
-        // Strategy s of the k + 2 with s + t − 2 = k (k = 0: (0, 2) alone; the tracer leaves (1, 1) to it).
-        const int strategies = depth == 0 ? 1 : depth + 2;
-        const int s = depth == 0 ? 0 : std::min(int(u.sample_1d(strategy_dim()) * float(strategies)), strategies - 1);
-        const int t = depth + 2 - s;
-        m_tracer.sample_strategy(ray, u, s, t, stats, out.contributions);
-        scale = float(strategies);
+        // Strategy s of the k + 2 with s + t − 2 = k (k = 0: (0, 2) alone; the tracer leaves (1, 1) to it), its
+        // contribution divided by the probability of choosing it.
+        const StrategyChoice c =
+            depth == 0 ? StrategyChoice{} : mmlt_choose_strategy(depth, u.sample_1d(strategy_dim()));
+        m_tracer.sample_strategy(ray, u, c.s, depth + 2 - c.s, stats, out.contributions);
+        scale = float(mmlt_strategy_count(depth));  // 1 / c.pmf, exactly
     }
     const float splat_scale = float(m_frame_area / m_area);
     Color sum(0.f);

@@ -36,6 +36,17 @@ struct MltSample {
     }
 };
 
+/// MMLT's strategy choice at depth k (scattering vertices): s of the strategies (s, t = k + 2 − s) — the k + 2 with
+/// s = 0 … k + 1 for k ≥ 1, (0, 2) alone for k = 0 — chosen uniformly by one primary coordinate u ∈ [0, 1).
+struct StrategyChoice {
+    int s = 0;
+    float pmf = 1.f;  // its probability
+};
+int mmlt_strategy_count(int depth);
+StrategyChoice mmlt_choose_strategy(int depth, float u);
+/// The probability mmlt_choose_strategy gives s at `depth` (0 for an s it never chooses).
+float mmlt_strategy_pmf(int depth, int s);
+
 class PathSpace {
 public:
     PathSpace(const Scene& scene, const BdptSettings& settings, const EmitterSet& emitters);
