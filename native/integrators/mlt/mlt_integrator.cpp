@@ -147,7 +147,7 @@ public:
                       mutations ? 100.0 * double(total.accepted) / double(mutations) : 0.0,
                       (unsigned long long)total.accepted, (unsigned long long)total.rejected,
                       mutations ? 100.0 * double(total.large_steps) / double(mutations) : 0.0);
-        ctx.log(line);
+        ctx.info(line);
     }
     WorkBudget budget() const override { return {m_settings.bdpt.pixel.samples, "mutation"}; }
     // Motion blur: the shutter time is a coordinate of the chain's state (PathSpace::shutter_dim).

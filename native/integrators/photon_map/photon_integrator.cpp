@@ -105,13 +105,13 @@ public:
             const PhotonTracer tracer(scene, emitters, rules, aimed.get());
             const int64_t n_global = cfg.resolve_global(frame_pixels), n_caustic = cfg.resolve_caustic(frame_pixels);
             maps = shoot_maps(tracer, emitters, aimed != nullptr, n_global, n_caustic, cfg.pixel.seed, 0, ctx);
-            ctx.log("PHOTON: global map of " + millions(double(maps.global.size())) + " photons from " +
-                    millions(double(n_global)) + " paths (" + std::to_string(int(maps.global.memory_bytes() / 1e6)) +
-                    " MB)");
+            ctx.info("PHOTON: global map of " + millions(double(maps.global.size())) + " photons from " +
+                     millions(double(n_global)) + " paths (" + std::to_string(int(maps.global.memory_bytes() / 1e6)) +
+                     " MB)");
             if (aimed)
-                ctx.log("PHOTON: caustic map of " + millions(double(maps.caustic.size())) + " photons from " +
-                        millions(double(n_caustic)) + " paths aimed at " + std::to_string(analysis.targets.size()) +
-                        (analysis.merged ? " merged" : "") + " specular object bound(s)");
+                ctx.info("PHOTON: caustic map of " + millions(double(maps.caustic.size())) + " photons from " +
+                         millions(double(n_caustic)) + " paths aimed at " + std::to_string(analysis.targets.size()) +
+                         (analysis.merged ? " merged" : "") + " specular object bound(s)");
             else
                 log_no_caustic_map(analysis, ctx);
         } catch (const Cancelled&) {
@@ -130,9 +130,9 @@ public:
 
 private:
     static void log_no_caustic_map(const CausticAnalysis& analysis, RenderContext& ctx) {
-        ctx.log(std::string("PHOTON: no caustic map: ") +
-                (analysis.any_traced_material ? "no object uses the mirror, glass or narrow glossy materials"
-                                              : "no mirror, glass or narrow glossy material in the scene"));
+        ctx.info(std::string("PHOTON: no caustic map: ") +
+                 (analysis.any_traced_material ? "no object uses the mirror, glass or narrow glossy materials"
+                                               : "no mirror, glass or narrow glossy material in the scene"));
     }
 
     /// Motion blur: the samples are rendered as T = Samples shutter passes. Pass j sees the scene at one time τ_j
@@ -152,12 +152,12 @@ private:
         const bool caustics = analysis.moving ? aim(emitters, analysis) != nullptr : still_aimed != nullptr;
         char cost[32];
         std::snprintf(cost, sizeof cost, "%.2f", budget.photon_cost);
-        ctx.log("PHOTON: motion blur: " + std::to_string(passes) +
-                " shutter passes of one sample per pixel, each with maps of its own time from " +
-                millions(double(budget.global)) + " global" +
-                (caustics ? " and " + millions(double(budget.caustic)) + " caustic" : std::string()) +
-                " photon paths, estimates of the " + std::to_string(budget.k) + " nearest (photon paths " + cost +
-                "x the still render's)");
+        ctx.info("PHOTON: motion blur: " + std::to_string(passes) +
+                 " shutter passes of one sample per pixel, each with maps of its own time from " +
+                 millions(double(budget.global)) + " global" +
+                 (caustics ? " and " + millions(double(budget.caustic)) + " caustic" : std::string()) +
+                 " photon paths, estimates of the " + std::to_string(budget.k) + " nearest (photon paths " + cost +
+                 "x the still render's)");
         if (!caustics) log_no_caustic_map(analysis, ctx);
         const LightSampler light_sampler = make_light_sampler("TREE", scene.lights());
         const uint64_t time_key = hash_combine(cfg.pixel.seed, 0x70686f746f6d62ULL);
