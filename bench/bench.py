@@ -455,6 +455,31 @@ def main():
             print(tail(out))
             report["errors"].append(f"candela_bench_photons failed (exit {rc})")
 
+    # 4e. SPPM's iterations against PATH (issue 16): CPU time per iteration, the photon pass's share, the ratio to
+    # PATH at equal samples per pixel in the same run (bench/native/sppm_rate.cpp).
+    sppm_bin = os.path.join(build, "bin", "candela_bench_sppm")
+    if os.access(sppm_bin, os.X_OK):
+        print("[4e] SPPM against PATH on the Cornell box and the caustic: candela_bench_sppm")
+        rc, out = run([sppm_bin, "--threads", str(threads)], os.path.join(outdir, "bench_sppm.log"))
+        rows = []
+        for line in out.splitlines():
+            line = line.strip()
+            if line.startswith("{") and "sppm_cpu_seconds" in line:
+                try:
+                    rows.append(json.loads(line))
+                except ValueError:
+                    pass
+        if rc == 0 and rows:
+            report["sppm"] = rows
+            for r in rows:
+                print(f"    {r['scene']}: {r['iterations']} iterations of {r['photons_per_iteration']:,} photons at "
+                      f"{r['size']} px: {r['sppm_cpu_seconds']:.3f} CPU s, photon pass "
+                      f"{r['shooting_cpu_seconds'] / r['sppm_cpu_seconds']:.0%}; {r['sppm_over_path_cpu']:.1f}x PATH's "
+                      f"CPU time at equal samples; means SPPM {r['sppm_mean']:.5f}, PATH {r['path_mean']:.5f}")
+        else:
+            print(tail(out))
+            report["errors"].append(f"candela_bench_sppm failed (exit {rc})")
+
     # 4b. The light tracer's ray rate on the same dump (issue 15: at least half the raw incoherent rate), measured
     # by the command-line renderer right after the raw rate, so both see the same machine load.
     lt_rate = None

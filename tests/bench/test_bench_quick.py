@@ -60,6 +60,9 @@ def test_every_stage_reports(report):
     assert rep["export"]["export"]["best"]["triangles"] == 20000
     assert "paired speed ratio" in stdout
     assert "light tracer share of raw" in stdout
+    # SPPM against PATH, both scenes of candela_bench_sppm.
+    assert [r["scene"] for r in rep["sppm"]] == ["cornell", "caustic"]
+    assert all(r["sppm_cpu_seconds"] > 0 and r["path_cpu_seconds"] > 0 for r in rep["sppm"])
     # The per-scene speed table: every accuracy scene, all three configurations measured.
     assert "per-scene samples/s" in stdout
     assert [r["scene"] for r in rep["scenes"]] == ["cornell_box", "soft_shadow", "veach_mis", "glossy", "room_window",
