@@ -3,7 +3,6 @@
 #include <cmath>
 #include <limits>
 #include <new>
-#include <optional>
 #include <type_traits>
 #include <variant>
 
@@ -193,9 +192,11 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
 
     // The cache's part: the Lambertian lobes' indirect light from the records (or a new one), if this vertex uses
     // the cache at all; the other lobes are traced on.
-    std::optional<LobeSplit> split_storage;  // only where the cache may serve this vertex
-    if (policy != CachePolicy::Never) split_storage.emplace(bsdf);
-    const LobeSplit* split = split_storage ? &*split_storage : nullptr;
+    // Only where the cache may serve this vertex; in raw storage, since GCC's std::optional zeroes all of its
+    // ~1 KB at construction (the BSDF copies a mixed split needs), a sixth of a camera vertex's own instructions.
+    static_assert(std::is_trivially_destructible_v<LobeSplit>);
+    alignas(LobeSplit) unsigned char split_storage[sizeof(LobeSplit)];
+    const LobeSplit* split = policy != CachePolicy::Never ? new (split_storage) LobeSplit(bsdf) : nullptr;
     Color E(0.f);
     bool cached = false;
     if (split && !is_black(split->rho_d) && wo_local.z > 0.f) {
