@@ -179,9 +179,9 @@ void IcTracer::poll_gather() const {
 // ---------------------------------------------------------------------------------------------------------------
 // A vertex.
 
-template <class Draw>
+template <class Draw, class RecordKey>
 bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, PathState& st, int bounce,
-                       CachePolicy policy, Draw&& draw, PathStats& stats, Color& L, uint64_t record_key, int px,
+                       CachePolicy policy, Draw&& draw, PathStats& stats, Color& L, RecordKey&& record_key, int px,
                        int py) const {
     const Vec3 wo = -ray.d;
     const SurfaceVertex v = SurfaceVertex::at(hit, sp.ns, wo);
@@ -209,7 +209,7 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
             if (IcCache::interpolate_list(t_pixel.records, m_cache.rules(), hit.p, v.frame.n, &E)) {
                 cached = true;
             } else {
-                IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key, stats);
+                IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key(), stats);
                 rec.pixel_x = px;
                 rec.pixel_y = py;
                 E = rec.E;  // its value at its own point: what the cache would give here once it holds it
@@ -311,7 +311,6 @@ void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats,
     PathState st;
     st.rules = &m_rules;  // a camera ray: emission counts with weight 1 (origin.specular)
     const int px = int(sampler.pixel_x()), py = int(sampler.pixel_y());
-    const uint64_t key = sampler.sample_stream_key();
     for (int bounce = 0;; ++bounce) {
         SurfaceHit hit;
         ++stats.rays;
@@ -339,9 +338,9 @@ void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats,
         if (bounce > m_settings.max_bounces || is_black(st.beta)) return;
         st.distance += hit.t;
         auto draw = [&](unsigned needs) { return draw_bounce(sampler, bounce, needs); };
-        if (!scatter(hit, sp, ray, st, bounce, CachePolicy::Create, draw, stats, L, hash_combine(key, uint64_t(bounce)),
-                     px, py))
-            return;
+        // The record key (seed, pixel, sample, bounce) is hashed only if the vertex makes a record.
+        const auto record_key = [&] { return hash_combine(sampler.sample_stream_key(), uint64_t(bounce)); };
+        if (!scatter(hit, sp, ray, st, bounce, CachePolicy::Create, draw, stats, L, record_key, px, py)) return;
     }
 }
 
@@ -380,7 +379,9 @@ Color IcTracer::trace_gather(const Ray& first_ray, const PathState& start, uint6
             b.lobe = rng.next_float();
             return b;
         };
-        if (!scatter(hit, sp, ray, st, bounce, policy, draw, stats, L, 0, -1, -1)) return L;
+        if (!scatter(
+                hit, sp, ray, st, bounce, policy, draw, stats, L, [] { return uint64_t(0); }, -1, -1))
+            return L;
     }
 }
 
