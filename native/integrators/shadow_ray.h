@@ -67,7 +67,9 @@ inline Color shadow_ray_transmittance(const Scene& scene, const SurfaceHit& hit,
 /// spawn's offset origin, or with a shadow terminator offset (Scene::terminator_point) the lifted point's.
 inline Vec3 shadow_ray_origin(const Scene& scene, const SurfaceHit& hit, const Vec3& ns_side, const Vec3& ng_side,
                               const Vec3& wl, bool front, SpawnPoints& spawn) {
-    if (!scene.has_terminator_offsets()) return spawn.origin(front);
+    // terminator_point leaves the point where it cannot lift it (a flat triangle, no offset): decided here first,
+    // without its per-call set-up (Blender's default offset is 0.1, so most scenes have offsets but flat meshes).
+    if (!scene.terminator_lifts(hit)) return spawn.origin(front);
     const Vec3 ng = front ? ng_side : -ng_side;
     const Vec3 p = scene.terminator_point(hit, front ? ns_side : -ns_side, ng, wl);
     return (p.x == hit.p.x && p.y == hit.p.y && p.z == hit.p.z) ? spawn.origin(front) : offset_ray_origin(p, ng);

@@ -143,8 +143,15 @@ Ray Camera::generate_ray(Vec2 raster, Vec2 u_lens) const {
         const float len = length(d_cam);
         Ray ray;
         ray.type = k_ray_camera;
-        ray.o = to_world().translation();
-        ray.d = to_world().vector(d_cam) * (1.f / len);
+        // The fixed transform read in place (to_world() returns a copy, twice per ray otherwise).
+        const auto place = [&](const Affine& xf) {
+            ray.o = xf.translation();
+            ray.d = xf.vector(d_cam) * (1.f / len);
+        };
+        if (m_moving)
+            place(to_world());
+        else
+            place(m_to_world);
         ray.tmin = m_clip_start * len;
         ray.tmax = m_clip_end * len;
         return ray;

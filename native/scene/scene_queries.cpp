@@ -155,24 +155,33 @@ void Scene::decode_hit(const Ray& ray, uint32_t geom, uint32_t prim, uint32_t in
                        const Vec3& ng_embree, float t, SurfaceHit* hit) const {
     const bool via_instance = inst != RTC_INVALID_GEOMETRY_ID;
     const uint32_t object = via_instance ? inst : geom;
-    std::optional<Placement> moved;
-    const Placement& pl = placement_now(object, moved);  // a moving object's at the ray's (thread's) shutter time
-    const MeshShading& s = m_shading[pl.mesh];
-    hit->primitive = {geom, prim, inst};
-    hit->t = t;
-    hit->p = ray.o + ray.d * t;
-    Vec3 ng = ng_embree;
-    if (pl.instanced) ng = pl.normal_to_world.vector(ng);
-    if (pl.mirrored) ng = -ng;
-    const float len = length(ng);
-    hit->ng = len > 0.f ? ng / len : Vec3(0.f, 0.f, 1.f);
-    hit->ns = shading_normal(s, pl, prim, u, v, hit->ng);
-    hit->material = s.material[prim];
-    hit->object = object;
-    hit->b1 = u;
-    hit->b2 = v;
-    const int32_t rank = s.emissive_rank[prim];
-    hit->light = (rank >= 0 && pl.light_base >= 0) ? pl.light_base + rank : -1;
+    const auto decode = [&](const Placement& pl) __attribute__((always_inline)) {
+        const MeshShading& s = m_shading[pl.mesh];
+        hit->primitive = {geom, prim, inst};
+        hit->t = t;
+        hit->p = ray.o + ray.d * t;
+        Vec3 ng = ng_embree;
+        if (pl.instanced) ng = pl.normal_to_world.vector(ng);
+        if (pl.mirrored) ng = -ng;
+        const float len = length(ng);
+        hit->ng = len > 0.f ? ng / len : Vec3(0.f, 0.f, 1.f);
+        hit->ns = shading_normal(s, pl, prim, u, v, hit->ng);
+        hit->material = s.material[prim];
+        hit->object = object;
+        hit->b1 = u;
+        hit->b2 = v;
+        const int32_t rank = s.emissive_rank[prim];
+        hit->light = (rank >= 0 && pl.light_base >= 0) ? pl.light_base + rank : -1;
+    };
+    // placement_now, with the scratch copy declared only for a moving object: GCC 12 zero-fills an empty
+    // std::optional<Placement>'s whole storage where it is declared (~25 instructions on every hit).
+    const Placement& stored = m_placements[object];
+    if (__builtin_expect(stored.motion < 0, 1)) {
+        decode(stored);
+    } else {
+        std::optional<Placement> moved;
+        decode(placement_now(object, moved));  // a moving object's at the ray's (thread's) shutter time
+    }
 }
 
 void Scene::intersect_packet(const Ray* rays, int n, TracedHit* hits) const {

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <limits>
 #include <new>
-#include <optional>
 #include <type_traits>
 #include <variant>
 
@@ -180,9 +179,9 @@ void IcTracer::poll_gather() const {
 // ---------------------------------------------------------------------------------------------------------------
 // A vertex.
 
-template <class Draw>
+template <class Draw, class RecordKey>
 bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, PathState& st, int bounce,
-                       CachePolicy policy, Draw&& draw, PathStats& stats, Color& L, uint64_t record_key, int px,
+                       CachePolicy policy, Draw&& draw, PathStats& stats, Color& L, RecordKey&& record_key, int px,
                        int py) const {
     const Vec3 wo = -ray.d;
     const SurfaceVertex v = SurfaceVertex::at(hit, sp.ns, wo);
@@ -193,9 +192,11 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
 
     // The cache's part: the Lambertian lobes' indirect light from the records (or a new one), if this vertex uses
     // the cache at all; the other lobes are traced on.
-    std::optional<LobeSplit> split_storage;  // only where the cache may serve this vertex
-    if (policy != CachePolicy::Never) split_storage.emplace(bsdf);
-    const LobeSplit* split = split_storage ? &*split_storage : nullptr;
+    // Only where the cache may serve this vertex; in raw storage, since GCC's std::optional zeroes all of its
+    // ~1 KB at construction (the BSDF copies a mixed split needs), a sixth of a camera vertex's own instructions.
+    static_assert(std::is_trivially_destructible_v<LobeSplit>);
+    alignas(LobeSplit) unsigned char split_storage[sizeof(LobeSplit)];
+    const LobeSplit* split = policy != CachePolicy::Never ? new (split_storage) LobeSplit(bsdf) : nullptr;
     Color E(0.f);
     bool cached = false;
     if (split && !is_black(split->rho_d) && wo_local.z > 0.f) {
@@ -208,7 +209,7 @@ bool IcTracer::scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, 
             if (IcCache::interpolate_list(t_pixel.records, m_cache.rules(), hit.p, v.frame.n, &E)) {
                 cached = true;
             } else {
-                IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key, stats);
+                IcRecord rec = make_record(hit, v, surface_footprint(st.distance, ray.d, hit.ng), record_key(), stats);
                 rec.pixel_x = px;
                 rec.pixel_y = py;
                 E = rec.E;  // its value at its own point: what the cache would give here once it holds it
@@ -310,7 +311,6 @@ void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats,
     PathState st;
     st.rules = &m_rules;  // a camera ray: emission counts with weight 1 (origin.specular)
     const int px = int(sampler.pixel_x()), py = int(sampler.pixel_y());
-    const uint64_t key = sampler.sample_stream_key();
     for (int bounce = 0;; ++bounce) {
         SurfaceHit hit;
         ++stats.rays;
@@ -338,9 +338,9 @@ void IcTracer::trace_camera(Ray ray, ConcreteSampler& sampler, PathStats& stats,
         if (bounce > m_settings.max_bounces || is_black(st.beta)) return;
         st.distance += hit.t;
         auto draw = [&](unsigned needs) { return draw_bounce(sampler, bounce, needs); };
-        if (!scatter(hit, sp, ray, st, bounce, CachePolicy::Create, draw, stats, L, hash_combine(key, uint64_t(bounce)),
-                     px, py))
-            return;
+        // The record key (seed, pixel, sample, bounce) is hashed only if the vertex makes a record.
+        const auto record_key = [&] { return hash_combine(sampler.sample_stream_key(), uint64_t(bounce)); };
+        if (!scatter(hit, sp, ray, st, bounce, CachePolicy::Create, draw, stats, L, record_key, px, py)) return;
     }
 }
 
@@ -379,7 +379,9 @@ Color IcTracer::trace_gather(const Ray& first_ray, const PathState& start, uint6
             b.lobe = rng.next_float();
             return b;
         };
-        if (!scatter(hit, sp, ray, st, bounce, policy, draw, stats, L, 0, -1, -1)) return L;
+        if (!scatter(
+                hit, sp, ray, st, bounce, policy, draw, stats, L, [] { return uint64_t(0); }, -1, -1))
+            return L;
     }
 }
 

@@ -119,9 +119,9 @@ private:
     Color trace_gather(const Ray& ray, const PathState& start, uint64_t key, PathStats& stats, float* distance) const;
     /// The vertex at `hit`: next-event estimation, the cache's part, the continuation. True with `ray`/`st` set to
     /// the continuation; false when the path ends here.
-    template <class Draw>
+    template <class Draw, class RecordKey>
     bool scatter(const SurfaceHit& hit, const ShadingPoint& sp, Ray& ray, PathState& st, int bounce, CachePolicy policy,
-                 Draw&& draw, PathStats& stats, Color& L, uint64_t record_key, int px, int py) const;
+                 Draw&& draw, PathStats& stats, Color& L, RecordKey&& record_key, int px, int py) const;
     void add_emission(const PathState& st, const Color& Le, float light_pdf, Color& L) const;
     void add_area_light_emission(const Ray& ray, float t_surface, bool camera_ray, const PathState& st, Color& L) const;
     void add_world_emission(const Ray& ray, const PathState& st, Color& L) const;
