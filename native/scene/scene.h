@@ -204,8 +204,9 @@ private:
     friend struct Builder;
     void build(const SceneArrays& arrays, const CancelToken* cancel, MeshBvhCache* cache);
     /// Placement `id` at the thread's shutter time (scene/shutter_time.h): the stored one for an object that does
-    /// not move, else a copy made in `scratch` with its transforms interpolated (an empty optional costs nothing
-    /// on the hot path of scenes without motion; a Placement would be constructed on every hit).
+    /// not move, else a copy made in `scratch` with its transforms interpolated (a Placement would be constructed
+    /// on every hit; but GCC 12 zero-fills a declared std::optional<Placement>, so hot callers declare `scratch`
+    /// only when the scene moves: Scene::decode_hit).
     inline const Placement& placement_now(uint32_t id, std::optional<Placement>& scratch) const;  // scene_parts.h
     /// placement_now's copy of a moving placement `pl`, its transforms at the thread's shutter time.
     __attribute__((cold)) const Placement& moved_placement(const Placement& pl,
