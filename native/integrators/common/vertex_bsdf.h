@@ -47,7 +47,7 @@ public:
                const LobeSubset* subset = nullptr)
         : m_scene(scene), m_hit(hit), m_subset(subset) {
         const int s = side(w);
-        m_sp[s] = sp;
+        m_sp[s].copy_from(sp);
         if (m_subset) m_sp[s].own(m_subset->apply(sp.bsdf()));
         m_shaded[s] = true;
     }
