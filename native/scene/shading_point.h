@@ -4,6 +4,7 @@
 // hit and held here.
 #pragma once
 
+#include <cstring>
 #include <new>
 #include <type_traits>
 
@@ -23,6 +24,17 @@ struct ShadingPoint {
     void own(const Bsdf& b) {
         new (m_storage) Bsdf(b);
         m_owns = true;
+    }
+    /// *this = o, copying the ~500-byte BSDF storage only when o owns its BSDF (a plain copy always moves it all).
+    /// Lists every member: a member added above must be added here.
+    void copy_from(const ShadingPoint& o) {
+        ns = o.ns;
+        emission = o.emission;
+        backfacing = o.backfacing;
+        bent = o.bent;
+        m_shared = o.m_shared;
+        m_owns = o.m_owns;
+        if (m_owns) std::memcpy(m_storage, o.m_storage, sizeof(Bsdf));
     }
 
 private:

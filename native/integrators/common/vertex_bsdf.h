@@ -47,7 +47,7 @@ public:
                const LobeSubset* subset = nullptr)
         : m_scene(scene), m_hit(hit), m_subset(subset) {
         const int s = side(w);
-        m_sp[s] = sp;
+        m_sp[s].copy_from(sp);
         if (m_subset) m_sp[s].own(m_subset->apply(sp.bsdf()));
         m_shaded[s] = true;
     }
@@ -137,6 +137,20 @@ public:
             out.weight = bs.f * (std::fabs(dot(out.w, v.ng)) * adjoint_factor(out.w, w_l) / out.pdf);
             return out;
         }
+        if (eps == 0.f && !sp.bent && side(out.w) == side(w_l) && frame_index(out.w, sp) == frame_index(w_l, sp)) {
+            // w_c leaves on w_l's side into w_l's own frame: f's vertex is v, so pdf_light(w_l, w_c), f(w_c, w_l)
+            // and adjoint_factor(w_c, w_l) reduce to these expressions (the same operations on the same values,
+            // without looking the side and frame up again).
+            const Vec3 c = v.frame.to_local(out.w);
+            if (leaks(dot(out.w, v.ng), c.z)) return {};
+            out.pdf = bsdf.pdf(l, c, TransportMode::Importance);
+            if (!(out.pdf > 0.f)) return {};
+            const Color f_cl = leaks(dot(w_l, v.ng), l.z) ? Color(0.f) : bsdf.f(c, l);
+            const float g = std::fabs(dot(w_l, m_hit.ng));
+            const float adjoint = g > 0.f ? std::fabs(dot(w_l, v.frame.n)) / g : 0.f;
+            out.weight = f_cl * (std::fabs(dot(out.w, v.ng)) * adjoint / out.pdf);
+            return out;
+        }
         out.pdf = pdf_light(w_l, out.w);
         if (!(out.pdf > 0.f)) return {};
         out.weight = f(out.w, w_l) * (std::fabs(dot(out.w, v.ng)) * adjoint_factor(out.w, w_l) / out.pdf);
@@ -188,10 +202,14 @@ private:
     /// SurfaceVertex::at(hit, sp.ns, w) for w's side (sp: that side's shading point). The vertex depends on w only
     /// through its side and whether w is above that side's shading normal (the frame is then built on ns, else on
     /// ng), so the at most four vertices are made once each and shared by every evaluation at this vertex.
+    /// Which of its side's two frames w uses: 1 if w is above ns turned to its side (the frame is ns's), else 0.
+    int frame_index(const Vec3& w, const ShadingPoint& sp) const {
+        const float c = dot(w, sp.ns);
+        return (side(w) == 1 ? -c : c) > 0.f ? 1 : 0;
+    }
     const SurfaceVertex& vertex(const Vec3& w, const ShadingPoint& sp) const {
         const int s = side(w);
-        const float c = dot(w, sp.ns);
-        const int k = (s == 1 ? -c : c) > 0.f ? 1 : 0;  // w above ns turned to its side: the frame is ns's
+        const int k = frame_index(w, sp);
         if (!m_vertex_made[s][k]) {
             new (m_vertex[s][k]) SurfaceVertex(SurfaceVertex::at(m_hit, sp.ns, w));
             m_vertex_made[s][k] = true;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "core/math.h"
 #include "core/vec.h"
@@ -32,29 +33,47 @@ struct __attribute__((packed)) Photon {
 };
 static_assert(sizeof(Photon) == 18, "a photon is 18 bytes");
 
-inline constexpr int k_flux_exponent_bias = 20;  // value = m·2^(e − bias − 9), e in [0, 31], m in [0, 511]
+inline constexpr int k_flux_exponent_bias = 20;
+
+/// 2^k for a normal result (k in [−126, 127]), exactly std::ldexp(1.f, k) there, built from the bits.
+inline float pow2(int k) {
+    const uint32_t bits = uint32_t(k + 127) << 23;
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+/// std::round (halves away from zero) for |x| < 2²³ or NaN, inline: x − floor(x) is exact there.
+inline float round_half_away(float x) {
+    const float a = std::fabs(x), r = std::floor(a);
+    return std::copysign(a - r >= 0.5f ? r + 1.f : r, x);
+}  // value = m·2^(e − bias − 9), e in [0, 31], m in [0, 511]
 
 /// Shared-exponent encoding of the non-negative colour c (already divided by the map's scale), rounded
 /// stochastically with u in [0, 1).
 inline uint32_t encode_flux(const Color& c, float u) {
     const float m = max_component(c);
     if (!(m > 0.f) || !std::isfinite(m)) return 0u;
-    int e2 = 0;
-    std::frexp(m, &e2);                              // m = f·2^e2, f in [0.5, 1)
+    int e2 = 0;  // m = f·2^e2, f in [0.5, 1) (frexp; read off the bits for a normal m)
+    uint32_t bits;
+    std::memcpy(&bits, &m, sizeof bits);
+    if (bits >= 0x00800000u)
+        e2 = int(bits >> 23) - 126;
+    else
+        std::frexp(m, &e2);
     int e = std::max(e2 + k_flux_exponent_bias, 0);  // below 2⁻²¹ of the scale: the smallest exponent
-    float scale = std::ldexp(1.f, 9 - (e - k_flux_exponent_bias));
+    float scale = pow2(9 - (e - k_flux_exponent_bias));
     if (m * scale > 511.f && e < 31) {  // the largest mantissa must stay below 512 after rounding up
         ++e;
         scale *= 0.5f;
     }
     if (e > 31) {  // beyond 2¹¹ of the scale: clamp
         e = 31;
-        scale = std::ldexp(1.f, 9 - (31 - k_flux_exponent_bias));
+        scale = pow2(9 - (31 - k_flux_exponent_bias));
     }
-    auto mant = [&](float v) {
-        const float x = std::fmin(v * scale, 511.f);
-        return uint32_t(std::fmin(std::floor(x + u), 511.f));
-    };
+    // min(x, 511) as fmin (a NaN x gives 511) without the library call.
+    auto min511 = [](float x) { return x < 511.f ? x : 511.f; };
+    auto mant = [&](float v) { return uint32_t(min511(std::floor(min511(v * scale) + u))); };
     return mant(c.x) | (mant(c.y) << 9) | (mant(c.z) << 18) | (uint32_t(e) << 27);
 }
 
@@ -74,7 +93,7 @@ inline uint16_t encode_direction(const Vec3& d) {
         u = uu;
         v = vv;
     }
-    auto q = [](float t) { return uint32_t(clamp(std::round((t * 0.5f + 0.5f) * 255.f), 0.f, 255.f)); };
+    auto q = [](float t) { return uint32_t(clamp(round_half_away((t * 0.5f + 0.5f) * 255.f), 0.f, 255.f)); };
     return uint16_t(q(u) | (q(v) << 8));
 }
 
