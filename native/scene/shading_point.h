@@ -47,4 +47,17 @@ private:
     alignas(Bsdf) unsigned char m_storage[sizeof(Bsdf)];
 };
 
+/// ShadingPoint's members as copy_from lists them: a member added to ShadingPoint that changes its size fails here
+/// (one that fits in padding does not: copy_from's comment still applies).
+struct ShadingPointMembers {
+    Vec3 ns;
+    Color emission;
+    bool backfacing, bent;
+    const Bsdf* shared;
+    bool owns;
+    alignas(Bsdf) unsigned char storage[sizeof(Bsdf)];
+};
+static_assert(sizeof(ShadingPoint) == sizeof(ShadingPointMembers),
+              "ShadingPoint gained a member: copy it in ShadingPoint::copy_from and list it in ShadingPointMembers");
+
 }  // namespace candela
