@@ -177,6 +177,19 @@ def find_json(out, prefix="RENDER_TIMED_JSON "):
     return None
 
 
+def json_lines(out, key):
+    """The JSON objects printed one per line in `out` that mention `key`, in order (the native benches' output)."""
+    found = []
+    for line in out.splitlines():
+        line = line.strip()
+        if line.startswith("{") and key in line:
+            try:
+                found.append(json.loads(line))
+            except ValueError:
+                pass
+    return found
+
+
 def blender_cmd(blender, script, args):
     return [blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script, "--"] + args
 
@@ -413,15 +426,7 @@ def main():
         print("[4] raw Embree incoherent rays: candela_bench_rays")
         cmd = [bin_path, dump_dir] + (["--rays", str(a.rays)] if a.rays else [])
         rc, out = run(cmd, os.path.join(outdir, "bench_rays.log"))
-        rj = None
-        for line in reversed(out.splitlines()):
-            line = line.strip()
-            if line.startswith("{") and "rays_per_second" in line:
-                try:
-                    rj = json.loads(line)
-                    break
-                except ValueError:
-                    pass
+        rj = (json_lines(out, "rays_per_second") or [None])[-1]
         if rc == 0 and rj and rj.get("rays_per_second"):
             raw = float(rj["rays_per_second"])
             report["raw_rays"] = rj
@@ -435,15 +440,7 @@ def main():
     if os.access(photons_bin, os.X_OK) and dump_ok:
         print("[4c] photon shooting and kd-tree build: candela_bench_photons")
         rc, out = run([photons_bin, dump_dir], os.path.join(outdir, "bench_photons.log"))
-        pj = None
-        for line in reversed(out.splitlines()):
-            line = line.strip()
-            if line.startswith("{") and "photon_paths_per_second" in line:
-                try:
-                    pj = json.loads(line)
-                    break
-                except ValueError:
-                    pass
+        pj = (json_lines(out, "photon_paths_per_second") or [None])[-1]
         if rc == 0 and pj:
             report["photons"] = pj
             print(f"    photon paths {fmt_rate(pj['photon_paths_per_second'])}, "
@@ -461,14 +458,7 @@ def main():
     if os.access(sppm_bin, os.X_OK):
         print("[4e] SPPM against PATH on the Cornell box and the caustic: candela_bench_sppm")
         rc, out = run([sppm_bin, "--threads", str(threads)], os.path.join(outdir, "bench_sppm.log"))
-        rows = []
-        for line in out.splitlines():
-            line = line.strip()
-            if line.startswith("{") and "sppm_cpu_seconds" in line:
-                try:
-                    rows.append(json.loads(line))
-                except ValueError:
-                    pass
+        rows = json_lines(out, "sppm_cpu_seconds")
         if rc == 0 and rows:
             report["sppm"] = rows
             for r in rows:
