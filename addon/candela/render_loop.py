@@ -253,7 +253,13 @@ def summary_line(session, progress, width, height):
         what += f", estimated noise {100.0 * error:.2f} %"
     elif progress.get("noise_unavailable"):
         what += ", noise estimate n/a"
-    return f"Candela: rendered {width}x{height}, {what} in {seconds:.2f} s ({rate:.1f} samples/s)"
+    line = f"Candela: rendered {width}x{height}, {what} in {seconds:.2f} s ({rate:.1f} samples/s)"
+    stages = stats.get("stages") or []
+    if stages:  # the pre-passes inside that time (photon shooting, the irradiance cache, MLT's bootstrap ...)
+        line += "; of which " + ", ".join(
+            f"{st['name'].lower()} {float(st['seconds']):.2f} s" + (f" ({st['runs']}×)" if st["runs"] > 1 else "")
+            for st in stages)
+    return line
 
 
 def result_views(engine, width, height, layer):

@@ -3,10 +3,13 @@
 // own progress) and the log that reaches the user.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "core/message_log.h"
 #include "core/parallel.h"
@@ -30,15 +33,29 @@ public:
         bool percent = false;
         std::string note;  // empty: none
     };
+    /// A stage that has ended, summed over its runs under one name (SPPM shoots photons every iteration; a moving
+    /// scene builds a cache per shutter pass): the render statistics show where the time went. The progress
+    /// snapshot cannot tell that: a stage shorter than the caller's polling interval is never seen in it.
+    struct Finished {
+        std::string name;
+        int runs = 0;
+        double seconds = 0.0;         // wall time of all runs
+        int64_t done = 0, total = 0;  // the last run's progress when it ended
+    };
     void begin(std::string name, int64_t total, bool percent = false) {
         std::lock_guard<std::mutex> lock(m_mutex);
+        finish_locked();
         m_name = std::move(name);
         m_done = 0;
         m_total = total;
         m_percent = percent;
+        m_started = std::chrono::steady_clock::now();
     }
     void set_done(int64_t done) { m_done.store(done, std::memory_order_relaxed); }
-    void end() { begin(std::string(), 0); }
+    void end() {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        finish_locked();
+    }
     void set_note(std::string note) {
         std::lock_guard<std::mutex> lock(m_mutex);
         m_note = std::move(note);
@@ -47,14 +64,37 @@ public:
         std::lock_guard<std::mutex> lock(m_mutex);
         return {m_name, m_done.load(std::memory_order_relaxed), m_total, m_percent, m_note};
     }
+    /// The stages that ended, in the order they first began (one entry per name).
+    std::vector<Finished> finished() const {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        return m_finished;
+    }
 
 private:
+    void finish_locked() {
+        if (m_name.empty()) return;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_started).count();
+        auto it =
+            std::find_if(m_finished.begin(), m_finished.end(), [&](const Finished& f) { return f.name == m_name; });
+        if (it == m_finished.end()) it = m_finished.insert(m_finished.end(), Finished{m_name});
+        it->runs += 1;
+        it->seconds += seconds;
+        it->done = m_done.load(std::memory_order_relaxed);
+        it->total = m_total;
+        m_name.clear();
+        m_done = 0;
+        m_total = 0;
+        m_percent = false;
+    }
+
     mutable std::mutex m_mutex;
     std::string m_name;
     std::atomic<int64_t> m_done{0};
     int64_t m_total = 0;
     bool m_percent = false;
     std::string m_note;
+    std::chrono::steady_clock::time_point m_started;
+    std::vector<Finished> m_finished;
 };
 
 /// What the status line names as the method when it is not the integrator the user chose: AUTO's choice and its

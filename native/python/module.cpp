@@ -396,6 +396,17 @@ PYBIND11_MODULE(_native, m) {
                  d["embree_bytes"] = st.scene.embree_bytes;
                  d["shading_bytes"] = st.scene.shading_bytes;
                  d["scene_bytes"] = st.scene.embree_bytes + st.scene.shading_bytes;
+                 py::list stages;  // the stages that ended, one per name, in the order they began
+                 for (const StageProgress::Finished& f : st.stages) {
+                     py::dict stage;
+                     stage["name"] = f.name;
+                     stage["runs"] = f.runs;
+                     stage["seconds"] = f.seconds;
+                     stage["done"] = f.done;
+                     stage["total"] = f.total;
+                     stages.append(stage);
+                 }
+                 d["stages"] = stages;
                  return d;
              })
         .def("get_pass", &get_pass, py::arg("name"))

@@ -181,6 +181,7 @@ SessionProgress Session::progress() const {
 SessionStats Session::stats() const {
     std::lock_guard<std::mutex> lock(m_mutex);
     SessionStats s = m_stats;
+    s.stages = m_counters.stage.finished();
     if (!m_finished) {
         s.paths = m_counters.paths;
         s.rays = m_counters.rays;

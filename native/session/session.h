@@ -44,6 +44,7 @@ struct SessionStats {
     double samples_per_second = 0.0;  // pixel samples per second of render time
     uint64_t paths = 0, rays = 0, nan_samples = 0;
     SceneStats scene;
+    std::vector<StageProgress::Finished> stages;  // the render's stages that ended (pre-passes), with their times
 };
 
 class Session {

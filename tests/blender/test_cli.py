@@ -56,6 +56,17 @@ def test_render_with_camera_succeeds(tmp_path):
     assert "Candela: rendered 32x24, 2 samples" in output, output
 
 
+def test_summary_names_the_pre_pass_and_its_time(tmp_path):
+    """The last line says how much of the render time a pre-pass took (here the irradiance cache's)."""
+    scene = scenes.tiny_scene(samples=2)
+    scene.candela.integrator = "IRRADIANCE_CACHE"
+    _save(scene, tmp_path / "ic.blend")
+    proc = _render(tmp_path / "ic.blend", tmp_path)
+    output = proc.stdout + proc.stderr
+    assert proc.returncode == 0, output
+    assert "Candela: rendered 32x24, 2 samples" in output and "; of which irradiance cache " in output, output
+
+
 def test_missing_native_module_reports_error(tmp_path):
     """Without the .so the add-on still registers; rendering fails loudly and explains why."""
     import candela

@@ -245,8 +245,12 @@ def test_irradiance_cache_reports_its_stage_records_and_pass(native):
         if p["stage"]:
             seen.append((p["stage"], p["stage_percent"], p["stage_done"], p["stage_total"]))
     assert s.error is None
-    assert seen and all(name == "Irradiance cache" and percent for name, percent, _, _ in seen)
+    # The polling may miss a pre-pass shorter than its interval; the statistics keep every stage that ended.
+    assert all(name == "Irradiance cache" and percent for name, percent, _, _ in seen)
     assert all(0 <= done <= total for _, _, done, total in seen)
+    stages = s.stats()["stages"]
+    assert [st["name"] for st in stages] == ["Irradiance cache"]
+    assert stages[0]["runs"] == 1 and stages[0]["seconds"] > 0 and 0 < stages[0]["done"] == stages[0]["total"]
     p = s.progress()
     records = s.get_pass("IC Records")
     assert records.shape == (96 * 72, 1) and records.sum() > 0 and records.max() >= 1
@@ -261,7 +265,7 @@ def test_irradiance_cache_cancels_within_100_ms_in_the_pre_pass(native):
                                            ic_gather_rays=8192))
     s.start()
     while s.progress()["stage_done"] < 1:
-        time.sleep(0.005)
+        assert not s.wait(0.005), "the render ended before its pre-pass was seen: make the pre-pass longer"
     t0 = time.perf_counter()
     s.cancel()
     assert s.wait(2.0)
