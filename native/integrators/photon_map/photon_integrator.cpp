@@ -15,6 +15,7 @@
 #include "integrators/photon_map/photon_settings.h"
 #include "integrators/photon_map/photon_shooting.h"
 #include "integrators/photon_map/sppm.h"
+#include "integrators/photon_map/sppm_gather.h"
 #include "integrators/progressive_driver.h"
 #include "lights/light_sampler.h"
 #include "scene/shutter_time.h"
@@ -232,7 +233,7 @@ double sppm_integrator_memory(const Params& params, double film_pixels) {
             "integrator SPPM: the photon map of sppm_photons = " + std::to_string(s.resolve_photons(film_pixels)) +
             " per iteration needs about " + std::to_string(int(photons / 1e6)) +
             " MB, more than memory_limit_mb = " + std::to_string(int(limit_mb)) + ": lower Photons per Iteration");
-    return photons + film_pixels * sppm_bytes_per_pixel();
+    return photons + film_pixels * sppm_bytes_per_pixel() + k_gather_round_bytes;
 }
 
 std::unique_ptr<Integrator> make_photon_integrator(const Params& params) {

@@ -107,7 +107,9 @@ PixelFlux gather_flux(const Scene& scene, const std::vector<VisiblePoint>& point
     if (grid.empty() || shot.photons.empty()) return flux;
     const size_t batches = (shot.photons.size() + k_gather_batch - 1) / k_gather_batch;
     ctx.counters.stage.begin("Gathering photons", int64_t(shot.photons.size()));
-    size_t per_round = 8;
+    // The first round is one batch: nothing is known yet about the pairs per batch, and a round of several
+    // batches at a large radius (hundreds of points per photon) would hold many times the budget.
+    size_t per_round = 1;
     for (size_t b0 = 0; b0 < batches && !ctx.cancel.cancelled();) {
         const size_t b1 = std::min(batches, b0 + per_round);
         const Gathered g = gather(grid, points.size(), shot.photons, b0, b1, ctx);

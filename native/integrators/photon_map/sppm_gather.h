@@ -22,8 +22,12 @@
 namespace candela {
 
 inline constexpr size_t k_gather_batch = 4096;
-/// (point, photon) pairs a round holds about: 8 bytes each while gathered, 4 once sorted (48 MB in all).
+/// (point, photon) pairs a round holds about: 8 bytes each while gathered, 4 once sorted.
 inline constexpr size_t k_pair_budget = size_t(1) << 22;
+/// A round's pair buffers at their peak, for the memory estimate: the batches' pair vectors (up to twice their
+/// size in capacity, as vectors grow by doubling) and the sorted photon indices side by side, 84 MB. A round
+/// passes the budget only when one batch alone does (thousands of points around each photon).
+inline constexpr double k_gather_round_bytes = double(k_pair_budget) * (2 * 2 * sizeof(uint32_t) + sizeof(uint32_t));
 
 struct VisiblePoint {
     SurfaceHit hit;
