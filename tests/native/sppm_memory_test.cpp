@@ -6,7 +6,6 @@
 #include <malloc.h>
 
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -19,14 +18,6 @@ namespace candela::test {
 namespace {
 
 #if !defined(__SANITIZE_ADDRESS__)  // ASan's shadow memory and quarantine make resident sizes meaningless
-long status_kb(const char* key) {
-    std::ifstream f("/proc/self/status");
-    std::string line;
-    while (std::getline(f, line))
-        if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
-    return -1;
-}
-
 TEST(SppmMemory, EstimateBoundsThePeakOfARenderWithFullGatherRounds) {
     Params p = basic_params(160, 160, 1, 8);
     p.set("integrator", std::string("SPPM"));
@@ -37,12 +28,12 @@ TEST(SppmMemory, EstimateBoundsThePeakOfARenderWithFullGatherRounds) {
     const MemoryEstimate e = Session::estimate_memory(arrays, p);
     malloc_trim(0);
     { std::ofstream("/proc/self/clear_refs") << "5"; }  // resets VmHWM (the peak) to the current RSS
-    const long before_kb = status_kb("VmRSS:");
+    const long before_kb = proc_status_kb("VmRSS:");
     RenderResult r;
     long peak_kb = 0;
     {
         r = render(arrays, p);
-        peak_kb = status_kb("VmHWM:");
+        peak_kb = proc_status_kb("VmHWM:");
     }
     ASSERT_GT(before_kb, 0);
     ASSERT_EQ(r.samples_done, 1);

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <string>
 
 #include "bsdf/material.h"
 #include "core/math.h"
@@ -288,6 +291,14 @@ double furnace_facet_bias(int segments, int rings) {
         area += 0.5 * double(length(cross(p[1] - p[0], p[2] - p[0])));
     }
     return 4.0 * k_pi / area - 1.0;
+}
+
+long proc_status_kb(const char* key) {
+    std::ifstream f("/proc/self/status");
+    std::string line;
+    while (std::getline(f, line))
+        if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
+    return -1;
 }
 
 }  // namespace candela::test

@@ -109,4 +109,8 @@ double furnace_expected(FurnaceScene kind, int max_bounces);
 /// sphere's: 4π/area(mesh) − 1 (power balance of a closed diffuse enclosure: area·B = ρ(4πI + area·B)).
 double furnace_facet_bias(int segments, int rings);
 
+/// A "kB" field of /proc/self/status ("VmRSS:", "VmHWM:"), or -1. Writing "5" to /proc/self/clear_refs resets
+/// VmHWM (the peak) to the current resident size, so a test can measure the peak growth of what it runs.
+long proc_status_kb(const char* key);
+
 }  // namespace candela::test

@@ -17,14 +17,6 @@
 namespace candela::test {
 namespace {
 
-long status_kb(const char* key) {
-    std::ifstream f("/proc/self/status");
-    std::string line;
-    while (std::getline(f, line))
-        if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
-    return -1;
-}
-
 // A small quad, a 65,024-triangle sphere and a 1,000-triangle sphere drawn twice.
 SceneArrays three_meshes() {
     MeshBuilder b;
@@ -112,11 +104,11 @@ TEST(Memory, EstimateBoundsThePeakOfARealBuild) {
         const MemoryEstimate e = Session::estimate_memory(a, p);
         malloc_trim(0);
         { std::ofstream("/proc/self/clear_refs") << "5"; }  // resets VmHWM (the peak) to the current RSS
-        const long before_kb = status_kb("VmRSS:");
+        const long before_kb = proc_status_kb("VmRSS:");
         long peak_kb = 0;
         {
             const Scene scene(a, p, nullptr);
-            peak_kb = status_kb("VmHWM:");
+            peak_kb = proc_status_kb("VmHWM:");
         }
         ASSERT_GT(before_kb, 0);
         const double measured = double(peak_kb - before_kb) * 1024.0;
