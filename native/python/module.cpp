@@ -104,7 +104,6 @@ std::unique_ptr<Session> make_session(const py::dict& arrays_dict, const py::dic
     return session;
 }
 
-/// A published setting as the add-on builds its property from it (core/param_spec.h).
 /// [(level, message), ...], level "INFO" or "WARNING" (core/message_log.h).
 py::list log_entries(const std::vector<LogEntry>& entries) {
     py::list out;
@@ -112,6 +111,7 @@ py::list log_entries(const std::vector<LogEntry>& entries) {
     return out;
 }
 
+/// A published setting as the add-on builds its property from it (core/param_spec.h).
 py::dict spec_dict(const ParamSpec& s) {
     py::dict d;
     d["key"] = s.key;
