@@ -1,6 +1,6 @@
 """`make accuracy`: what accuracy costs in time, per scene, per technique, against Cycles.
 
-    /usr/bin/python3.11 bench/accuracy.py [--quick] [--out DIR] [--docs docs] [--size 96] [--max-samples 256] [--scenes A,B] [--configs 'Cycles,Candela PATH SOBOL']
+    /usr/bin/python3.11 bench/accuracy.py [--quick] [--out DIR] [--docs docs] [--size 96] [--max-samples 256] [--scenes A,B] [--configs 'Cycles,Candela PATH SOBOL'] [--reference-integrator door=BDPT]
 
 For every scene (examples/scenes.py) and every configuration — Cycles, and Candela with each integrator and
 each sampler the native module offers — it renders at 1, 2, 4, … samples per pixel, measures the CPU time of
