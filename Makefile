@@ -13,7 +13,7 @@ DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev
 
 FORMAT_FILES = $(shell find native tests bench -name '*.cpp' -o -name '*.h')
 
-.PHONY: format all deps build demo test bench microbench skip-bench accuracy povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
+.PHONY: format all deps build demo test bench microbench skip-bench accuracy accuracy-metropolis povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
 
 all: build
 
@@ -55,6 +55,11 @@ bench: build
 # Error-vs-time report: docs/accuracy.md, docs/accuracy/*.png and measurements.csv (about 10 minutes idle, < 30 loaded).
 accuracy: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD)
+
+# Issue 18's measurement: MLT and MMLT beside BDPT, PATH and Cycles on the door scenes, the caustic and the Cornell
+# box, docs/accuracy_metropolis.md and docs/accuracy_metropolis/*.png (about 15 minutes idle, 30-40 loaded).
+accuracy-metropolis: build
+	$(CLEAN_ENV) $(PYTHON) bench/accuracy_metropolis.py --build $(BUILD)
 
 # Candela's irradiance cache beside POV-Ray 3.7's radiosity on the Cornell box: the time each needs to reach 2 %
 # against its own converged image, docs/povray.md (about 25 minutes, most of it POV-Ray's reference).

@@ -1,6 +1,6 @@
 """`make accuracy`: what accuracy costs in time, per scene, per technique, against Cycles.
 
-    /usr/bin/python3.11 bench/accuracy.py [--quick] [--out DIR] [--docs docs] [--size 96] [--max-samples 256] [--scenes A,B] [--configs 'Cycles,Candela PATH SOBOL']
+    /usr/bin/python3.11 bench/accuracy.py [--quick] [--out DIR] [--docs docs] [--size 96] [--max-samples 256] [--scenes A,B] [--configs 'Cycles,Candela PATH SOBOL'] [--reference-integrator door=BDPT]
 
 For every scene (examples/scenes.py) and every configuration — Cycles, and Candela with each integrator and
 each sampler the native module offers — it renders at 1, 2, 4, … samples per pixel, measures the CPU time of
@@ -63,11 +63,16 @@ def parse_args():
     ap.add_argument("--scenes", default=None, help="comma-separated subset of the scenes")
     ap.add_argument("--configs", default=None, help="comma-separated subset of the configuration labels")
     ap.add_argument("--repeats", type=int, default=1, help="renders per configuration and count (least CPU kept)")
+    ap.add_argument("--reference-integrator", default="",
+                    help="SCENE=INTEGRATOR,…: the Candela integrator rendering a scene's reference (default PATH); "
+                         "an unbiased one with less noise per second there (BDPT on the door scenes) makes the "
+                         "reference's own noise a smaller part of every error")
     a = ap.parse_args()
     if a.quick:
         a.size, a.max_samples, a.ref_factor = 32, 8, 8
         a.scenes = a.scenes or "cornell_box,soft_shadow"
     a.out = Path(a.out or Path(a.build) / ("accuracy-quick" if a.quick else "accuracy"))
+    a.reference_integrator = dict(kv.split("=", 1) for kv in a.reference_integrator.split(",") if kv)
     return a
 
 
@@ -100,8 +105,11 @@ def configurations(native):
         samplers = caps.get("samplers", ["RANDOM"]) if name == "PATH" else [None]
         for sampler in samplers:
             settings = [f"integrator={name}"] + ([f"sampler={sampler}"] if sampler and len(samplers) > 1 else [])
-            if name in ("MLT", "MMLT"):  # every count renders afresh: a bootstrap for the image size, not 10⁵ paths
-                settings += [f"mlt_bootstrap={1000 if ARGS.quick else 20000}", "mlt_chains=100"]
+            # Every count renders afresh: a bootstrap for the image size, not 10⁵ paths. The default 1000 chains: on the
+            # door scene at 96 px MMLT's MSE at 256 mutations per pixel was 1.7× lower with 1000 chains than with 100
+            # (3 seeds each, docs/metropolis.md) — a depth then has tens of chains, not a handful.
+            if name in ("MLT", "MMLT"):
+                settings += [f"mlt_bootstrap={1000 if ARGS.quick else 20000}", "mlt_chains=1000"]
             label = f"Candela {name}" + (f" {sampler}" if sampler and len(samplers) > 1 else "")
             out.append((label, "CANDELA", settings))
         if name == "PATH":
@@ -130,7 +138,9 @@ def build_fingerprint():
 def reference(scene, engine, ref_samples):
     """A cached high-sample reference: the luminance of two independent half renders (accuracy_stats.errors
     averages them and uses their difference as the reference's own noise)."""
-    key = f"{scene}_{engine}_{ARGS.size}_{ref_samples}_{build_fingerprint() if engine == 'CANDELA' else 'cycles34'}"
+    integrator = ARGS.reference_integrator.get(scene) if engine == "CANDELA" else None
+    key = (f"{scene}_{engine}{'_' + integrator if integrator else ''}_{ARGS.size}_{ref_samples}_"
+           f"{build_fingerprint() if engine == 'CANDELA' else 'cycles34'}")
     cache = ARGS.out / "cache"
     cache.mkdir(parents=True, exist_ok=True)
     files = [cache / f"{key}_{i}.exr" for i in (0, 1)]
@@ -138,7 +148,8 @@ def reference(scene, engine, ref_samples):
         for i, f in enumerate(files):
             res = run_blender(["--scene", scene, "--engine", engine, "--counts", str(ref_samples // 2),
                                "--size", str(ARGS.size), "--threads", str(ARGS.threads), "--seed", str(1000 + i),
-                               "--out", str(cache), "--tag", f"{key}_part{i}"], cache / f"{key}_{i}.log")
+                               "--out", str(cache), "--tag", f"{key}_part{i}",
+                               *(["--set", f"integrator={integrator}"] if integrator else [])], cache / f"{key}_{i}.log")
             os.replace(res["runs"][0]["exr"], f)
     native = native_module()
     return tuple(stats.luminance(native.read_exr(str(f))) for f in files)
@@ -366,8 +377,9 @@ def write_outputs(scene_names, configs, results, rows, started):
           f"{stats.REGIME_DS:g} at s = −0.5 gives F_max = min({stats.F_CAP:.1f}, "
           f"{stats.TIME_TOLERANCE:g}^(|s|/σ)). `~` marks such a time; `> t` means not reached within it "
           "(t = the last measured time); `—` no usable value.",
-          "- **Integrators other than PATH** are measured against the same Candela reference, which PATH renders: "
-          "their error includes their bias (the irradiance cache's interpolation and record noise, which do not "
+          "- **Integrators other than PATH** are measured against the same Candela reference, which PATH renders"
+          + ("".join(f" ({s.replace('_', ' ')}: {i})" for s, i in ARGS.reference_integrator.items()
+                     if s in scene_names)) + ": their error includes their bias (the irradiance cache's interpolation and record noise, which do not "
           "fall with the samples per pixel). The irradiance cache's pre-pass is part of its time: its set-up is "
           "taken to be PATH's on the same scene (the same export and BVH) rather than 2·t(1) − t(2), which would "
           "count the pre-pass as set-up. It is measured on the scenes its issue names (the Cornell box and the "

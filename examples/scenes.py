@@ -7,8 +7,9 @@ Scenes: "cornell_box" (examples/cornell_box.py), "soft_shadow" (an area light, a
 docs/verification.md §8.2, converted to Blender's Z-up), "glossy" (glossy and diffuse spheres under an area
 light and a dim sky), "many_lights" (64 small point lights of very different powers over blocks on a floor,
 for the light-selection strategies), "room_window" (a diffuse room lit by the sun and the sky through a window: light
-that has bounced lights most of it), "caustic" (a glass sphere's caustic on a floor under a small light) and "door"
-(Veach's door ajar: a room lit only through a gap from a lamp in a second room). Every builder clears the scene and
+that has bounced lights most of it), "caustic" (a glass sphere's caustic on a floor under a small light), "door"
+(Veach's door ajar: a room lit only through a gap from a lamp in a second room), and "glossy_door" (the same with a
+rough metal panel facing the lamp and a glossy floor before the camera: glossy-diffuse-glossy light). Every builder clears the scene and
 applies the shared render settings of cornell_box.configure_render / configure_cycles / configure_candela (same
 bounces, filter and seed).
 """
@@ -281,12 +282,18 @@ def build_caustic(scene):
     return 4 / 3
 
 
-def build_door(scene):
+def build_door(scene, glossy_indirect=False):
     """Veach's door ajar: the camera's room is lit only through a door opened a few degrees onto a second room,
     whose lamp faces away from the door — almost all light reaches the camera after several bounces through the
-    gap, the case where paths from the camera rarely find the light."""
+    gap, the case where paths from the camera rarely find the light. With `glossy_indirect` (the "glossy_door"
+    scene) the lit room's far wall, the one the lamp faces, is a rough metal panel (GGX, roughness 0.2) and the
+    camera's floor is glossy (GGX, roughness 0.25): much of the light then reaches the camera along
+    lamp → glossy panel → gap → diffuse wall → glossy floor → camera, paths with glossy vertices at both ends of a
+    diffuse one, where one (s, t) strategy of the bidirectional path tracer carries most of a depth (the case
+    multiplexed MLT is for, Hachisuka et al. 2014)."""
     white = diffuse("White", (0.7, 0.7, 0.7))
-    floor = diffuse("Floor", (0.6, 0.5, 0.4))
+    floor = glossy("Floor", (0.6, 0.5, 0.4), 0.25, "GGX") if glossy_indirect else diffuse("Floor", (0.6, 0.5, 0.4))
+    far = glossy("Panel", (0.9, 0.9, 0.9), 0.2, "GGX") if glossy_indirect else white
     # Two rooms 4 m deep, 3 m wide, 2.5 m high, side by side along x, sharing the wall at x = 0.
     for name, mat, matrix in (
             ("Floor", floor, Matrix.Translation((0, 0, 0)) @ Matrix.Diagonal((6, 2, 1, 1))),
@@ -294,7 +301,7 @@ def build_door(scene):
             ("Back", white, Matrix.Translation((0, 2, 1.25)) @ Matrix.Rotation(math.radians(90), 4, "X") @ Matrix.Diagonal((6, 1.25, 1, 1))),
             ("Front", white, Matrix.Translation((0, -2, 1.25)) @ Matrix.Rotation(math.radians(-90), 4, "X") @ Matrix.Diagonal((6, 1.25, 1, 1))),
             ("Left", white, Matrix.Translation((-6, 0, 1.25)) @ Matrix.Rotation(math.radians(90), 4, "Y") @ Matrix.Diagonal((1.25, 2, 1, 1))),
-            ("Right", white, Matrix.Translation((6, 0, 1.25)) @ Matrix.Rotation(math.radians(-90), 4, "Y") @ Matrix.Diagonal((1.25, 2, 1, 1)))):
+            ("Right", far, Matrix.Translation((6, 0, 1.25)) @ Matrix.Rotation(math.radians(-90), 4, "Y") @ Matrix.Diagonal((1.25, 2, 1, 1)))):
         rectangle(scene, name, mat, matrix)
     # The dividing wall at x = 0 with a doorway 1 m wide (y ∈ [0.2, 1.2]) and 2 m high: three slabs around it.
     cube(scene, "WallA", white, Matrix.Translation((0, -0.9, 1.25)) @ Matrix.Diagonal((0.05, 1.1, 1.25, 1)))
@@ -313,7 +320,7 @@ def build_door(scene):
 
 BUILDERS = {"soft_shadow": build_soft_shadow, "veach_mis": build_veach_mis, "glossy": build_glossy,
             "many_lights": build_many_lights, "room_window": build_room_window, "caustic": build_caustic,
-            "door": build_door}
+            "door": build_door, "glossy_door": lambda scene: build_door(scene, glossy_indirect=True)}
 NAMES = ["cornell_box", *BUILDERS]
 
 
