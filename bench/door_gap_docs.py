@@ -77,37 +77,66 @@ def write(docs, report, sizes, comparisons, paired, exact_mean):
         for v, b, e, rel, se, z in paired:
             zs = "identical images" if se == 0 and rel == 0 else f"{z:+.1f}"
             lines.append(f"| `{v}` − `{b}` | {e} | {100 * rel:+.3f} % ± {100 * se:.3f} % | {zs} |")
-    lines += ["", FINDINGS]
+    lines += ["", findings(report, paired, exact_mean)]
     (docs / "door_gap.md").write_text("\n".join(lines) + "\n")
+
+
+def findings(report, paired, exact_mean):
+    """The conclusions, with the run's own figures where it has them."""
+    def pair(v, b, e):
+        for pv, pb, pe, rel, se, z in paired:
+            if (pv, pb, pe) == (v, b, e):
+                return f"{100 * rel:+.1f} % ± {100 * se:.1f} %, z {z:+.0f}" if se > 0 else "identical images"
+        return "not measured in this run"
+
+    def vs_exact(v, e):
+        r, x = report.get(v, {}).get(e), exact_mean(v)
+        if r is None or x is None:
+            return "not measured in this run"
+        return f"{100 * (r['mean'] / x - 1):+.2f} % ± {100 * r['se'] / x:.2f} %"
+
+    return FINDINGS.format(rug_cycles=pair("slit_rug", "slit_slab", "CYCLES"),
+                           rug_path=pair("slit_rug", "slit_slab", "PATH"),
+                           rug_exact=vs_exact("slit_rug", "CYCLES"),
+                           trim_cycles=pair("ajar8_trim", "door", "CYCLES"),
+                           trim_path=pair("ajar8_trim", "door", "PATH"),
+                           trim_bdpt=pair("ajar8_trim", "door", "BDPT"),
+                           thin_path=vs_exact("slit_thin", "PATH"), thin_bdpt=vs_exact("slit_thin", "BDPT"),
+                           slab_path=vs_exact("slit_slab", "PATH"), slab_bdpt=vs_exact("slit_slab", "BDPT"))
 
 
 FINDINGS = """## What it shows
 
+**Candela renders the gap right.** On the slit, whose image mean is known exactly, `PATH` is off by
+{thin_path} (thin ceiling) and {slab_path} (slabs), `BDPT` by {thin_bdpt} and {slab_bdpt}. So its shadow rays
+neither leak past the slit's edges nor lose light at them, and occluders that overlap and touch (`slit_boxes`) change
+nothing, in Candela or in Cycles. (An earlier run with seeds 1–8 had `PATH` −0.12 % and `BDPT` −0.26 % on
+`slit_thin`, z −2.3 and −3.3; the same settings with seeds 101–108 gave +0.04 % ± 0.04 % and −0.02 % ± 0.15 %. The
+standard error from eight replicates is itself uncertain by about a quarter, and seeds that share a sampler
+sequence give correlated runs: read single |z| ≈ 3 with that in mind.)
+
 **Coplanar overlaps: Cycles loses light, Candela does not.** Cycles 3.4 keeps a new ray off its own surface by
-skipping the one triangle it leaves from (its `intersection_skip_self`: same object, same primitive), with no origin
-offset. A second face lying in the same plane — a rug on a floor, a casing quad on a wall, two meshes modelled to
-touch — is another primitive, so every ray leaving a point of the overlap meets it at distance ≈ 0: the point is
-shadowed and its indirect light lost. On the slit's rug that removes about a third of the image (`slit_rug`,
-Cycles against the exact value, and against its own `slit_slab` seed by seed); Candela renders the rug exactly as
-the bare floor, bit for bit with the same seed, because its scene finds coplanar rivals at build time and its ray
-queries break their ties (`native/scene/coplanar_overlap.h`, `Scene::filter_hits`), and its rays leave from an
-offset origin. Occluders that overlap (`slit_boxes`) change nothing in either renderer: a coplanar twin only matters
-where light must leave a visible face.
+skipping the one triangle the ray leaves from (its `intersection_skip_self`: same object, same primitive), with no
+origin offset. A second face lying in the same plane — a rug on a floor, a casing on a wall, two meshes modelled to
+touch — is a different primitive, so a ray leaving a point of the overlap meets it at distance ≈ 0: the point is
+shadowed from every light and its indirect light is lost. On the slit's rug Cycles renders {rug_exact} against the
+exact mean ({rug_cycles} against its own bare-floor image, seed by seed); Candela's rug renders as the bare floor
+({rug_path}), because the scene finds coplanar rivals when it is built and its ray queries break their ties
+(`native/scene/coplanar_overlap.h`, `Scene::filter_hits`), and its rays leave from an offset origin.
 
 **The door ajar.** Without visible coplanar faces (`door`, as in `examples/scenes.py`: the slabs touch the floor,
-the ceiling and the lintel, but with faces that face each other and are hidden) Cycles, `PATH` and `BDPT` agree
-within their noise. With a casing and a threshold lying on the wall and the floor around the gap (`ajar8_trim`),
-Cycles loses the light those quads should reflect, Candela's images stay those of `door`, and Cycles renders the
-scene darker: the sign and the size of issue 22's "Candela 0.6–1.1 % brighter". The third-party scene of the issue
-is not in the repository, so its own overlaps are not verified here; a scene converted from another renderer's
-format (Bitterli's conversions, say) keeps the frames, trims and duplicated faces its modeller left.
+the ceiling and the lintel, but the touching faces face each other and are hidden) Cycles, `PATH` and `BDPT` agree
+within their noise (table above). With a casing and a threshold lying on the wall's and the floor's visible faces
+around the gap (`ajar8_trim`) Cycles loses the light those quads should reflect: {trim_cycles} seed by seed, while
+Candela stays where it was ({trim_path} for `PATH`, {trim_bdpt} for `BDPT`). That is the sign of issue 22's
+"Candela 0.6–1.1 % brighter", and its size follows the overlapping area that the light through the gap reaches. The
+issue's third-party scene is not in the repository, so its own overlaps are not verified here; scenes converted from
+other renderers' formats commonly keep the frames, trims and duplicated faces their modellers left.
 
-**So Candela is right**, and nothing at the gap needs fixing: its shadow rays neither leak through touching slabs
-(every slit variant matches its exact value) nor lose light on coplanar faces. `tests/blender/test_door_gap.py`
-pins `PATH` and `BDPT` to the exact mean of the slit with both kinds of overlap (`slit_overlap`), with an allowance
-from the measured noise small enough that a 2 % error — a sixteenth of Cycles' — fails it.
+Nothing at the gap needed fixing. `tests/blender/test_door_gap.py` (in `make test`) pins `PATH` and `BDPT` to the
+exact mean of the slit with both kinds of overlap (`slit_overlap`), with an allowance from the measured noise small
+enough that a 2 % error fails it (checked once with the floor's reflectance lowered 2 %: rejected).
 
-**To compare with Cycles on such a scene**, remove the duplicated faces (Blender: *Mesh > Clean Up > Merge by
-Distance* does not do it across objects; delete the twin, or move a decal a fraction of a millimetre off its
-surface): Cycles' image then rises to Candela's.
+**To compare with Cycles on such a scene**, remove the coplanar twins first (delete the duplicate, or lift a decal
+or a trim a fraction of a millimetre off its surface); Cycles' image then rises to Candela's.
 """

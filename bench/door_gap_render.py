@@ -3,11 +3,12 @@ Cycles and with Candela's integrators, several independent seeds each, in ONE Bl
 as one JSON line.
 
     bin/candela-blender -b --factory-startup -noaudio --python-exit-code 1 --python bench/door_gap_render.py -- \
-        --variant door --size 64 --samples 256 --seeds 1,2,3,4 --engines CYCLES,PATH,BDPT --out DIR
+        --variant door --size 64 --seeds 1,2,3,4 --engines CYCLES:2048,PATH:2048,BDPT:512 --out DIR
 
-Variants (build_variant): the door ajar of examples/scenes.py (`door`) and the same rooms with the door at other
-angles, with its slab's faces touching the floor and the lintel (coplanar contact, as in scenes.py) or sunk 1 cm
-into them (no coplanar faces anywhere: the wall slabs also reach 1 cm past the floor and the ceiling). Settings are
+Variants (build_variant): the door ajar of examples/scenes.py (`door`); the same rooms with the door at another
+angle, its slabs touching the floor, ceiling and lintel with hidden faces (as in scenes.py), sunk 1 cm into them
+instead (`_sunk`: no coplanar faces anywhere), or with a casing and a threshold lying on visible faces (`_trim`);
+and the slit of bench/door_gap_analytic.py, whose image mean has a closed form (`slit_*`). Settings are
 those of the parity suite (tests/parity/render_pair.py: box filter 1 px, 12 bounces of every kind, no clamping, no
 light threshold, Candela's lights chosen by area for PATH), so a difference is the estimators', not a setting's.
 """
@@ -29,7 +30,18 @@ sys.path[:0] = [os.path.join(ROOT, "examples"), os.path.join(ROOT, "tests", "par
 import cornell_box as cb  # noqa: E402
 import door_gap_analytic as an  # noqa: E402
 import parity_scenes as pscenes  # noqa: E402
-import scenes  # noqa: E402
+
+
+def _example_scenes():
+    """examples/scenes.py, loaded by path: the in-Blender tests have a `scenes` module of their own."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("candela_example_scenes", os.path.join(ROOT, "examples", "scenes.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+scenes = _example_scenes()
 from accuracy_render import render  # noqa: E402
 from render_pair import mirror_settings  # noqa: E402
 
