@@ -70,7 +70,7 @@ parity: build
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --integrator BDPT --build $(BUILD) --docs docs
 
 # Door gap (issue 22): Cycles, PATH and BDPT on a slit with an exact image mean and on the door ajar, with and
-# without coplanar overlaps; docs/door_gap.md (about 15 minutes idle, 40 loaded).
+# without coplanar overlaps; docs/door_gap.md (about 20 minutes idle, 45 loaded).
 door-gap: build
 	$(CLEAN_ENV) $(PYTHON) bench/door_gap.py --build $(BUILD) --docs docs
 

@@ -6,7 +6,7 @@ every difference.
                                           [--seed-base 1] [--engines CYCLES:2048,PATH:2048,BDPT:512] [--out DIR]
                                           [--reuse] [--docs docs]
 
-`make door-gap` runs the default variants and writes docs/door_gap.md (about 15 minutes idle). Each variant renders in one Blender process (bench/door_gap_render.py); each render's luminance image mean is one
+`make door-gap` runs the default variants and writes docs/door_gap.md (about 20 minutes idle). Each variant renders in one Blender process (bench/door_gap_render.py); each render's luminance image mean is one
 replicate. Per engine: mean m, standard error s = sd/√R (R − 1 degrees of freedom); per pair, z = (m₁ − m₂)/√(s₁² +
 s₂²). Image means of heavy-tailed path-traced images are close to normal at R ≥ 8 renders of ≥ 10⁵ samples each,
 but with R = 8 a |z| of 3 still has a false-alarm probability near 2 % (Student t, ~14 degrees of freedom), not
@@ -29,7 +29,7 @@ sys.path.insert(0, str(ROOT / "tests" / "parity"))
 import parity_stats as ps  # noqa: E402  (luminance, Student-t quantiles)
 
 
-DEFAULT_VARIANTS = ["slit_thin", "slit_slab", "slit_boxes", "slit_rug", "door", "ajar8_trim"]
+DEFAULT_VARIANTS = ["slit_thin", "slit_slab", "slit_boxes", "slit_rug", "door", "ajar8_trim", "ajar8_sunk"]
 # Per kind of variant: image width and samples per render per engine, for standard errors near 0.1–0.2 % on the slit
 # and 0.3–1.4 % on the door (PATH and Cycles need ~16× BDPT's samples there for equal noise).
 SLIT_RUN = (48, "CYCLES:512,PATH:1024,BDPT:512")
