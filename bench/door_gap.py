@@ -29,7 +29,8 @@ sys.path.insert(0, str(ROOT / "tests" / "parity"))
 import parity_stats as ps  # noqa: E402  (luminance, Student-t quantiles)
 
 
-DEFAULT_VARIANTS = ["slit_thin", "slit_slab", "slit_boxes", "slit_rug", "door", "ajar8_trim", "ajar8_sunk"]
+DEFAULT_VARIANTS = ["slit_thin", "slit_thin_far100", "slit_thin_far1000", "slit_slab", "slit_boxes", "slit_rug", "door",
+                    "ajar8_trim", "ajar8_sunk"]
 # Per kind of variant: image width and samples per render per engine, for standard errors near 0.1–0.2 % on the slit
 # and 0.3–1.4 % on the door (PATH and Cycles need ~16× BDPT's samples there for equal noise).
 SLIT_RUN = (48, "CYCLES:512,PATH:1024,BDPT:512")
@@ -70,7 +71,7 @@ def welch_p(m1, s1, n1, m2, s2, n2):
 
 
 # Variants compared seed by seed with a base variant (paired_differences).
-PAIRS = {"slit_rug": "slit_slab", "slit_boxes": "slit_slab", "slit_overlap": "slit_slab", "ajar8_trim": "door",
+PAIRS = {"slit_thin_far100": "slit_thin", "slit_thin_far1000": "slit_thin", "slit_rug": "slit_slab", "slit_boxes": "slit_slab", "slit_overlap": "slit_slab", "ajar8_trim": "door",
          "ajar8_sunk": "door", "ajar8": "door"}
 
 
@@ -79,7 +80,7 @@ def exact_mean(variant):
     if not variant.startswith("slit_"):
         return None
     import door_gap_analytic as an
-    return an.mean(slab=0.0 if variant == "slit_thin" else an.SLAB)
+    return an.mean(slab=0.0 if variant.split("_")[1] == "thin" else an.SLAB)
 
 
 def summarise(result, native, vout):

@@ -57,6 +57,19 @@ def mean(slab=SLAB, width=SLIT_WIDTH, n=4096):
     return float(image(n // 16, n // 16, slab=slab, width=width, sub=16).mean())
 
 
+def offset_effect(distance, slab=0.0, n=1024):
+    """The relative change of the image mean when the camera is `distance` further up (bench/door_gap_render.py's
+    `_far<D>`): Candela's rays leave the floor from an origin lifted by 256 ulps of the floor's camera-world height
+    (scene/ray_offset.h), as if the slit were that much lower."""
+    lift = 256.0 * float(np.spacing(np.float32(distance + HEIGHT - 0.1)))
+    u = (np.arange(n) + 0.5) / n
+    x = -WINDOW_HALF + 2 * WINDOW_HALF * u
+
+    def m(h):
+        return float(view_factor(x[None, :], x[:, None], height=h, slab=slab).mean())
+    return m(HEIGHT - lift) / m(HEIGHT) - 1.0
+
+
 if __name__ == "__main__":
     for t in (0.0, SLAB):
         print(f"slab {t}: image mean {mean(slab=t):.7f} (coarser grid {mean(slab=t, n=2048):.7f})")

@@ -143,16 +143,24 @@ def build_slit(scene, slab, boxes=False, rug=False):
 
 def build_variant(scene, name, size):
     """name: `door` (examples/scenes.py as it is), `ajar<deg>`, `ajar<deg>_sunk`, `ajar<deg>_trim` (build_rooms),
-    or `slit_thin`, `slit_slab`, `slit_boxes`, `slit_rug`, `slit_overlap` (boxes and rug; build_slit)."""
+    or `slit_thin`, `slit_slab`, `slit_boxes`, `slit_rug`, `slit_overlap` (boxes and rug; build_slit), each also
+    as `slit_<mode>_far<D>` (the camera D m away)."""
     cb.clear_scene(scene)
     if name == "door":
         aspect = scenes.BUILDERS["door"](scene)
     elif name.startswith("slit_"):
-        mode = name[5:]
+        mode, _, far = name[5:].partition("_far")
         if mode not in ("thin", "slab", "boxes", "rug", "overlap"):
             raise SystemExit(f"unknown variant {name!r}")
         aspect = build_slit(scene, 0.0 if mode == "thin" else an.SLAB, boxes=mode in ("boxes", "overlap"),
                             rug=mode in ("rug", "overlap"))
+        if far:
+            # `_far<D>`: the orthographic camera D metres higher, its rays starting where they did (clip start D):
+            # the same image, with camera-world coordinates ~D at the floor, so the scale-relative ray offsets
+            # there grow with D (256 ulps of D: 2 mm at D = 100, 16 mm at D = 1000).
+            cam = scene.camera
+            cam.location.z += float(far)
+            cam.data.clip_start, cam.data.clip_end = float(far), float(far) + 100.0
     else:
         base, _, mode = name.partition("_")
         if not base.startswith("ajar") or mode not in ("", "sunk", "trim"):
