@@ -125,7 +125,8 @@ sequence give correlated runs: read single |z| ≈ 3 with that in mind.)
 **Shadow-ray offsets are far too small to matter at a gap.** Candela's rays leave a surface from an origin moved
 off it by 256 ulps of the point's camera-world coordinates (`native/scene/ray_offset.h`, the one rule every
 integrator calls; no setting changes it): 15 µm on the slit's floor; in the door scene about 0.12 mm at the gap
-(5.5 m from the camera) and at most 0.25 mm anywhere, against a gap of 13 cm and a door 4 cm thick. Lifting the slit's camera by D (`slit_thin_far<D>`, the same
+(5.5 m from the camera) and at most 0.25 mm anywhere, against a gap of 13 cm at the door's free edge, a slit of
+about 3 mm on its hinge side and a door 4 cm thick. Lifting the slit's camera by D (`slit_thin_far<D>`, the same
 image with coordinates ~D at the floor) makes the offset measurable, and the image brightens by what a floor raised
 by that offset predicts: D = 100 m, {far100} seed by seed ({pred100} predicted); D = 1000 m, {far1000}
 ({pred1000} predicted). At the scene's own scale the same rule predicts {pred0}.

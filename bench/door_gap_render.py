@@ -181,7 +181,8 @@ def parse_args():
     ap.add_argument("--size", type=int, default=64)
     ap.add_argument("--samples", type=int, default=256, help="samples per pixel of each render")
     ap.add_argument("--seeds", default="1,2,3,4")
-    ap.add_argument("--engines", default="CYCLES,PATH,BDPT", help="CYCLES and Candela integrator names, each NAME or NAME:SAMPLES")
+    ap.add_argument("--engines", default="CYCLES,PATH,BDPT",
+                    help="CYCLES and Candela integrator names, each NAME or NAME:SAMPLES")
     ap.add_argument("--set", action="append", default=[], help="Candela property key=value (all its renders)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--out", required=True)
