@@ -3,7 +3,7 @@ Candela must render bench/door_gap_analytic.py's closed-form image mean, with PA
 
 The scene (bench/door_gap_render.py, `slit_overlap`): sky light through a slit between two black slabs onto a white
 floor in a black room, each slab two overlapping boxes and a quad of the floor's material lying on the floor under
-the slit. Cycles 3.4 renders that rug 36 % too dark (its rays skip only their own triangle, so the coplanar twin
+the slit. Cycles 3.4 renders this image 37 % too dark (its rays skip only their own triangle, so the coplanar twin
 shadows every point of it; `make door-gap`); a renderer that lets rays leak through the touching boxes or skip a
 slab would render it too bright.
 
