@@ -90,7 +90,8 @@ def summarise(result, native, vout):
     for engine, r in result["renders"].items():
         files = [vout / Path(f).name for f in r["exr"]]   # the run folder may have moved
         means = np.array([float(ps.luminance(native.read_exr(str(f))).mean()) for f in files])
-        rows[engine] = {"means": means.tolist(), "mean": float(means.mean()),
+        seeds = [int(f.stem.rsplit("seed", 1)[1]) for f in files]
+        rows[engine] = {"means": means.tolist(), "mean": float(means.mean()), "seeds": [min(seeds), max(seeds)],
                         "se": float(means.std(ddof=1) / math.sqrt(len(means))), "n": len(means),
                         "seconds": float(sum(r["seconds"])), "samples": r.get("samples", result["samples"])}
     return rows
