@@ -13,7 +13,7 @@ DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev
 
 FORMAT_FILES = $(shell find native tests bench -name '*.cpp' -o -name '*.h')
 
-.PHONY: format all deps build demo test bench microbench skip-bench accuracy accuracy-metropolis povray-compare parity env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
+.PHONY: format all deps build demo test bench microbench skip-bench accuracy accuracy-metropolis povray-compare parity door-gap env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
 
 all: build
 
@@ -73,6 +73,11 @@ parity: build
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --build $(BUILD) --docs docs
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --nodes --size 96 --build $(BUILD) --docs docs
 	$(CLEAN_ENV) $(PYTHON) tests/parity/parity.py --integrator BDPT --build $(BUILD) --docs docs
+
+# Door gap (issue 22): Cycles, PATH and BDPT on a slit with an exact image mean and on the door ajar, with and
+# without coplanar overlaps; docs/door_gap.md (about 20 minutes idle, 45 loaded).
+door-gap: build
+	$(CLEAN_ENV) $(PYTHON) bench/door_gap.py --build $(BUILD) --docs docs
 
 # Per-sample variance under a very bright HDR sun (Linear and Closest), Candela against Cycles in one run
 # (issue 22; about 1 minute): prints the ratios; exit status 1 if Candela's exceeds Cycles' (`make test` runs its
