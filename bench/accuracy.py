@@ -20,6 +20,11 @@ All times come from one run on one machine; the report says which and when. The 
 samples, references of 2048) take about 10 minutes on an idle 2-core machine and stay under 30 under load.
 --quick (for `make test`) renders 32 px images at up to 8 samples into OUT only, to check the pipeline (about
 half a minute), not the numbers.
+--auto (`make accuracy-auto`, issue 19's acceptance of AUTO) measures the accuracy scenes and the held-out ones
+(examples/scenes.py HELD_OUT) with AUTO_CONFIGS only and writes DOCS/accuracy_auto.md (the table "AUTO at equal time"
+first, with a verdict per scene against the targets) and DOCS/accuracy_auto/. --reuse reads back the sequences an
+earlier run saved in OUT for the same arguments (whatever build measured them; --rerun A,B renders those scenes
+afresh), for a run split into batches or repeated after a change that leaves the other configurations' images alike.
 """
 
 import argparse
@@ -187,13 +192,22 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def sequences(scene, configs, counts):
-    """Render every configuration at every count, round-robin in one Blender process
-    (bench/accuracy_sequences.py): {label: [run, …]} with the least CPU time over the repeats."""
+MEASURED = {}  # --reuse: scene → (when its saved sequences were measured, by which build)
+
+
+def sequences_args(scene, configs, counts):
+    """bench/accuracy_sequences.py's arguments for one scene (also the key of its saved result)."""
     args = ["--scene", scene, "--size", str(ARGS.size), "--threads", str(ARGS.threads), "--counts",
             ",".join(map(str, counts)), "--repeats", str(ARGS.repeats), "--out", str(ARGS.out / "renders")]
     for label, engine, settings in configs:
         args += ["--config", f"{label}|{engine}|{','.join(settings)}"]
+    return args
+
+
+def sequences(scene, configs, counts):
+    """Render every configuration at every count, round-robin in one Blender process
+    (bench/accuracy_sequences.py): {label: [run, …]} with the least CPU time over the repeats."""
+    args = sequences_args(scene, configs, counts)
     # --reuse: a scene's sequences measured by an earlier run with the same arguments are read back instead of
     # rendered again (a long run split into batches, the report rewritten), whatever build measured them: for
     # changes that leave the images of the configurations measured alike (AUTO's policy: then --rerun the scenes
@@ -202,6 +216,8 @@ def sequences(scene, configs, counts):
     saved = ARGS.out / f"{scene}_sequences_{key}.json"
     if ARGS.reuse and saved.exists() and scene not in ARGS.rerun:
         res = json.loads(saved.read_text())
+        MEASURED[scene] = (datetime.datetime.fromtimestamp(saved.stat().st_mtime).strftime("%Y-%m-%d %H:%M"),
+                           res.get("build", "an earlier build (not recorded)"))
     else:
         res = run_blender(args, ARGS.out / f"{scene}_sequences.log", "accuracy_sequences.py",
                           "ACCURACY_SEQUENCES_JSON ")
@@ -542,6 +558,8 @@ def auto_rows(scene_names, configs, results):
                 return "—", "—"
             r = e_auto / singles[label]
             sig = ratio_sigma(a, results[(scene, label)], t)
+            if not math.isfinite(sig):   # an error figure not above the reference's own noise
+                return f"{r:.2f} ×/÷ ∞ (reference noise)", verdict(r, sig, target)
             return f"{r:.2f} ×/÷ {math.exp(sig):.2f}", verdict(r, sig, target)
         r_best, v_best = judged(best, AUTO_TARGETS[0])
         r_path, v_path = judged(path, AUTO_TARGETS[1])
@@ -593,6 +611,12 @@ def auto_table(scene_names, configs, results):
         met = sum(1 for r in names if "FAIL" not in r[3][0] and "FAIL" not in r[3][1])
         md += [f"Both targets met (pass or within noise) on {met} of {len(names)} scenes.", ""]
     md += ["AUTO's status line per scene:", "", *(r[2] for r in rows), ""]
+    if MEASURED:
+        md += ["Read back with --reuse (measured by an earlier invocation into the same work directory; every "
+               "configuration of a scene always comes from one invocation, round-robin): " +
+               "; ".join(f"{k} at {w} by build {b}" for k, (w, b) in MEASURED.items()) +
+               f". Measured by this invocation (build {build_fingerprint()}): " +
+               (", ".join(k for k in scene_names if k not in MEASURED) or "none") + ".", ""]
     return md
 
 if __name__ == "__main__":
