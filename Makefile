@@ -13,7 +13,7 @@ DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev
 
 FORMAT_FILES = $(shell find native tests bench -name '*.cpp' -o -name '*.h')
 
-.PHONY: format all deps build demo test bench microbench skip-bench accuracy accuracy-metropolis povray-compare parity door-gap env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
+.PHONY: format all deps build demo test bench microbench skip-bench accuracy accuracy-metropolis accuracy-auto povray-compare parity door-gap env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
 
 all: build
 
@@ -60,6 +60,12 @@ accuracy: build
 # box, docs/accuracy_metropolis.md and docs/accuracy_metropolis/*.png (about 15 minutes idle, 30-40 loaded).
 accuracy-metropolis: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy_metropolis.py --build $(BUILD)
+
+# AUTO's acceptance (issue 19): AUTO at equal time against the best single integrator and PATH on the accuracy scenes
+# and the held-out ones; docs/accuracy_auto.md with a pass/fail per scene (docs/auto.md, "Acceptance"). Settings of
+# the committed run: 64 px, up to 128 samples, references of 512 (about 40 minutes on the shared 2-core machine).
+accuracy-auto: build
+	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD) --auto --size 64 --max-samples 128 --ref-factor 4
 
 # Candela's irradiance cache beside POV-Ray 3.7's radiosity on the Cornell box: the time each needs to reach 2 %
 # against its own converged image, docs/povray.md (about 25 minutes, most of it POV-Ray's reference).

@@ -20,6 +20,11 @@ All times come from one run on one machine; the report says which and when. The 
 samples, references of 2048) take about 10 minutes on an idle 2-core machine and stay under 30 under load.
 --quick (for `make test`) renders 32 px images at up to 8 samples into OUT only, to check the pipeline (about
 half a minute), not the numbers.
+--auto (`make accuracy-auto`, issue 19's acceptance of AUTO) measures the accuracy scenes and the held-out ones
+(examples/scenes.py HELD_OUT) with AUTO_CONFIGS only and writes DOCS/accuracy_auto.md (the table "AUTO at equal time"
+first, with a verdict per scene against the targets) and DOCS/accuracy_auto/. --reuse reads back the sequences an
+earlier run saved in OUT for the same arguments (whatever build measured them; --rerun A,B renders those scenes
+afresh), for a run split into batches or repeated after a change that leaves the other configurations' images alike.
 """
 
 import argparse
@@ -48,6 +53,25 @@ INTEGRATOR_SCENES = {"IRRADIANCE_CACHE": ("cornell_box", "room_window")}
 # light tree has thousands of emissive triangles to choose from (issue 22: TREE must not cost more than POWER).
 CONFIG_SCENES = {"Candela PATH POWER": ("veach_mis",)}
 DEFAULT_SCENES = ["cornell_box", "soft_shadow", "veach_mis", "glossy", "room_window", "caustic", "door"]
+# `--auto` (make accuracy-auto, issue 19's acceptance of AUTO): the accuracy scenes and the held-out ones
+# (examples/scenes.py HELD_OUT, which the policy was not tuned on), with the configurations AUTO is compared with:
+# Cycles, PATH with the default sampler, AUTO, and BDPT (the other integrator the policy can choose in this build:
+# SPPM comes after BDPT in the table); MMLT on the door ajar, the one scene where a Metropolis sampler may be best;
+# the irradiance cache on its two scenes (INTEGRATOR_SCENES). Not measured for want of time on this shared machine:
+# LIGHT, MLT, PHOTON, SPPM and PATH's other samplers (docs/accuracy.md has them on the accuracy scenes).
+AUTO_CONFIGS = ("Cycles", "Candela PATH SOBOL", "Candela AUTO", "Candela BDPT", "Candela MMLT",
+                "Candela IRRADIANCE_CACHE")
+AUTO_CONFIG_SCENES = {"Candela MMLT": ("door",)}
+
+
+def held_out_scenes():
+    """examples/scenes.py's HELD_OUT, read without importing it (it needs Blender's bpy)."""
+    import ast
+    tree = ast.parse((ROOT / "examples" / "scenes.py").read_text())
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "HELD_OUT" for t in node.targets):
+            return list(ast.literal_eval(node.value))
+    return []
 
 
 def parse_args():
@@ -67,11 +91,18 @@ def parse_args():
                     help="SCENE=INTEGRATOR,…: the Candela integrator rendering a scene's reference (default PATH); "
                          "an unbiased one with less noise per second there (BDPT on the door scenes) makes the "
                          "reference's own noise a smaller part of every error")
+    ap.add_argument("--reuse", action="store_true",
+                    help="read back the sequences an earlier run with the same arguments and build saved in OUT")
+    ap.add_argument("--rerun", default="", help="with --reuse: comma-separated scenes to render afresh")
+    ap.add_argument("--auto", action="store_true",
+                    help="AUTO's acceptance: accuracy + held-out scenes, AUTO_CONFIGS, DOCS/accuracy_auto.md")
     a = ap.parse_args()
     if a.quick:
         a.size, a.max_samples, a.ref_factor = 32, 8, 8
         a.scenes = a.scenes or "cornell_box,soft_shadow"
-    a.out = Path(a.out or Path(a.build) / ("accuracy-quick" if a.quick else "accuracy"))
+    a.out = Path(a.out or Path(a.build) / ("accuracy-quick" if a.quick else "accuracy-auto" if a.auto else "accuracy"))
+    a.report = "accuracy_auto" if a.auto else "accuracy"
+    a.rerun = [x for x in a.rerun.split(",") if x]
     a.reference_integrator = dict(kv.split("=", 1) for kv in a.reference_integrator.split(",") if kv)
     return a
 
@@ -144,6 +175,11 @@ def reference(scene, engine, ref_samples):
     cache = ARGS.out / "cache"
     cache.mkdir(parents=True, exist_ok=True)
     files = [cache / f"{key}_{i}.exr" for i in (0, 1)]
+    if ARGS.reuse and engine == "CANDELA" and not all(f.exists() for f in files):
+        # --reuse: a reference another build rendered (PATH's image: valid while PATH's estimator is unchanged)
+        older = sorted(cache.glob(f"{scene}_{engine}_{ARGS.size}_{ref_samples}_*_0.exr"))
+        if older:
+            files = [older[-1], Path(str(older[-1])[:-len("_0.exr")] + "_1.exr")]
     if not all(f.exists() for f in files):
         for i, f in enumerate(files):
             res = run_blender(["--scene", scene, "--engine", engine, "--counts", str(ref_samples // 2),
@@ -167,14 +203,37 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def sequences(scene, configs, counts):
-    """Render every configuration at every count, round-robin in one Blender process
-    (bench/accuracy_sequences.py): {label: [run, …]} with the least CPU time over the repeats."""
+MEASURED = {}  # --reuse: scene → (when its saved sequences were measured, by which build)
+
+
+def sequences_args(scene, configs, counts):
+    """bench/accuracy_sequences.py's arguments for one scene (also the key of its saved result)."""
     args = ["--scene", scene, "--size", str(ARGS.size), "--threads", str(ARGS.threads), "--counts",
             ",".join(map(str, counts)), "--repeats", str(ARGS.repeats), "--out", str(ARGS.out / "renders")]
     for label, engine, settings in configs:
         args += ["--config", f"{label}|{engine}|{','.join(settings)}"]
-    res = run_blender(args, ARGS.out / f"{scene}_sequences.log", "accuracy_sequences.py", "ACCURACY_SEQUENCES_JSON ")
+    return args
+
+
+def sequences(scene, configs, counts):
+    """Render every configuration at every count, round-robin in one Blender process
+    (bench/accuracy_sequences.py): {label: [run, …]} with the least CPU time over the repeats."""
+    args = sequences_args(scene, configs, counts)
+    # --reuse: a scene's sequences measured by an earlier run with the same arguments are read back instead of
+    # rendered again (a long run split into batches, the report rewritten), whatever build measured them: for
+    # changes that leave the images of the configurations measured alike (AUTO's policy: then --rerun the scenes
+    # whose choice changed). The build that measured them is recorded in the file.
+    key = hashlib.sha256(json.dumps(args).encode()).hexdigest()[:16]
+    saved = ARGS.out / f"{scene}_sequences_{key}.json"
+    if ARGS.reuse and saved.exists() and scene not in ARGS.rerun:
+        res = json.loads(saved.read_text())
+        MEASURED[scene] = (datetime.datetime.fromtimestamp(saved.stat().st_mtime).strftime("%Y-%m-%d %H:%M"),
+                           res.get("build", "an earlier build (not recorded)"))
+    else:
+        res = run_blender(args, ARGS.out / f"{scene}_sequences.log", "accuracy_sequences.py",
+                          "ACCURACY_SEQUENCES_JSON ")
+        res["build"] = build_fingerprint()
+        saved.write_text(json.dumps(res))
     best = {}
     for run in res["runs"]:
         key = (run["configuration"], run["samples"])
@@ -190,9 +249,11 @@ def measure(scene, label, runs, ref, rows, setup=None):
     set-up: it takes the PATH configuration's, the same export and BVH)."""
     native = native_module()
     metrics = ("rrmse", "relmse", "robust", "ref_noise_fraction", "robust_ref_noise_fraction", "top_share")
-    p = {k: [] for k in ("samples", "cpu", "wall", *metrics)}
+    p = {k: [] for k in ("samples", "cpu", "wall", "rrmse_sigma", *metrics)}
     for run in runs:
-        err = stats.errors(stats.luminance(native.read_exr(run["exr"])), *ref)
+        image = stats.luminance(native.read_exr(run["exr"]))
+        err = stats.errors(image, *ref)
+        p["rrmse_sigma"].append(stats.rrmse_log_sigma(image, *ref))
         p["samples"].append(run["samples"])
         p["cpu"].append(run["cpu_seconds"])
         p["wall"].append(run["wall_seconds"])
@@ -222,8 +283,10 @@ def main():
     native = native_module()
     started = time.time()
     counts = [2 ** k for k in range(int(math.log2(ARGS.max_samples)) + 1)]
-    scene_names = ARGS.scenes.split(",") if ARGS.scenes else DEFAULT_SCENES
+    scene_names = ARGS.scenes.split(",") if ARGS.scenes else DEFAULT_SCENES + (held_out_scenes() if ARGS.auto else [])
     configs = configurations(native)
+    if ARGS.auto:
+        configs = [c for c in configs if c[0] in AUTO_CONFIGS]
     if ARGS.quick:
         configs = configs[:2] + configs[-1:] if len(configs) > 3 else configs
     if ARGS.configs:
@@ -233,8 +296,9 @@ def main():
     rows, results = [], {}
     scene_configs = {}
     for scene in scene_names:
+        config_scenes = {**CONFIG_SCENES, **AUTO_CONFIG_SCENES} if ARGS.auto else CONFIG_SCENES
         here = [c for c in configs
-                if scene in CONFIG_SCENES.get(c[0], INTEGRATOR_SCENES.get(integrator_of(c), (scene,)))]
+                if scene in config_scenes.get(c[0], INTEGRATOR_SCENES.get(integrator_of(c), (scene,)))]
         scene_configs[scene] = here
         refs = {engine: reference(scene, engine, ARGS.ref_factor * ARGS.max_samples)
                 for engine in dict.fromkeys(engine for _, engine, _ in here)}
@@ -249,7 +313,7 @@ def main():
                 path_setup = results[(scene, label)]["setup"]
     write_outputs(scene_names, scene_configs, results, rows, started)
     print(f"accuracy: done in {time.time() - started:.0f} s; results in {ARGS.out}" +
-          ("" if ARGS.quick else f" and {ARGS.docs}/accuracy.md"))
+          ("" if ARGS.quick else f" and {ARGS.docs}/{ARGS.report}.md"))
 
 
 def cell(t, how):
@@ -330,7 +394,7 @@ def plot(scene, configs, results, path):
 
 def write_outputs(scene_names, configs, results, rows, started):
     docs = ARGS.out if ARGS.quick else Path(ARGS.docs)
-    plots = docs / "accuracy"
+    plots = docs / ARGS.report
     plots.mkdir(parents=True, exist_ok=True)
     with open(plots / "measurements.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
@@ -388,21 +452,29 @@ def write_outputs(scene_names, configs, results, rows, started):
           f"bound; the *time* and the *MSE* at {n_max} samples always (for slopes near −0.5, the time ratio "
           "at equal error is about their product).", ""]
     for scene in scene_names:
-        md += [f"## {scene.replace('_', ' ').title()}", "", f"![{scene}](accuracy/{scene}.png)", ""]
+        md += [f"## {scene.replace('_', ' ').title()}", "", f"![{scene}]({ARGS.report}/{scene}.png)", ""]
         md += scene_tables(scene, configs[scene], results, n_max)
         md.append("")
         plot(scene, configs[scene], results, plots / f"{scene}.png")
-    md += auto_table(scene_names, configs, results)
-    md += ["Raw measurements: [accuracy/measurements.csv](accuracy/measurements.csv). "
+    table = auto_table(scene_names, configs, results)
+    md += ["Raw measurements: [{0}/measurements.csv]({0}/measurements.csv). ".format(ARGS.report) +
            f"The run took {time.time() - started:.0f} s.", ""]
-    (docs / "accuracy.md").write_text("\n".join(md))
+    if ARGS.auto:   # the acceptance table first: it is what this report is for
+        head = md.index("## Method")
+        md = md[:head] + table + md[head:]
+        md[0] = "# AUTO at equal time: issue 19's acceptance measurement"
+        md[2] = md[2].replace("`make accuracy`", "`make accuracy-auto`")
+    else:
+        md += table
+    (docs / f"{ARGS.report}.md").write_text("\n".join(md))
 
 
 def error_at(p, t):
     """A configuration's rel. RMSE at time t: log-log interpolation between its measured points, and beyond them
     the plain Monte Carlo slope −0.5 from the nearest end (an equal-time comparison needs every configuration at
     the same time, which the sample counts do not give)."""
-    pts = [(x, e) for x, e in zip(p["time"], p["rrmse"]) if x > 0 and e > 0]
+    # Sorted by time: under load a small count can take longer than the next one (the points stay the same).
+    pts = sorted((x, e) for x, e in zip(p["time"], p["rrmse"]) if x > 0 and e > 0)
     if not pts or t <= 0:
         return None
     if t <= pts[0][0]:
@@ -417,20 +489,70 @@ def error_at(p, t):
 
 
 AUTO_TARGETS = (1.25, 1.05)  # AUTO's error at equal time: ≤ 1.25× the best single integrator's, ≤ 1.05× PATH's
+NOISE_Z = 2.0                # a row fails only when its ratio exceeds the target by more than NOISE_Z σ
+TIME_NOISE_MIN_SAMPLES = 16  # counts whose CPU time scatter estimates the timing noise (set-up negligible there)
 
 
-def auto_table(scene_names, configs, results):
-    """The acceptance table of issue 19 (docs/auto.md): per scene, AUTO's choice, its rel. RMSE at equal time (its
-    own time at its largest sample count) divided by the best single Candela integrator's, by PATH's (the default
-    sampler's) and by Cycles', and the analysis (static features + pilot) as a share of that render's wall time."""
-    rows = []
+def time_log_sigma(p):
+    """σ of log(time) of one render: the scatter of log(time/samples) over the counts ≥ TIME_NOISE_MIN_SAMPLES
+    (the cost per sample is constant there, so the scatter is the machine's load)."""
+    x = [math.log(t / n) for n, t in zip(p["samples"], p["time"]) if n >= TIME_NOISE_MIN_SAMPLES and t > 0]
+    if len(x) < 2:
+        return 0.0
+    m = sum(x) / len(x)
+    return math.sqrt(sum((v - m) ** 2 for v in x) / (len(x) - 1))
+
+
+def sigma_at(p, t):
+    """σ of log(rel. RMSE) of a configuration at time t: the larger image noise of the two measured points t lies
+    between (or of the nearest end)."""
+    pts = [(x, s) for x, s in zip(p["time"], p["rrmse_sigma"]) if x > 0]
+    for (t0, s0), (t1, s1) in zip(pts, pts[1:]):
+        if t0 <= t <= t1:
+            return max(s0, s1)
+    return pts[0][1] if t <= pts[0][0] else pts[-1][1]
+
+
+def same_images(a, b):
+    """AUTO rendered exactly the chosen integrator's images (same seed and settings): equal errors at every count."""
+    return len(a["rrmse"]) == len(b["rrmse"]) and all(
+        abs(x - y) <= 1e-9 * max(abs(x), 1e-30) for x, y in zip(a["rrmse"], b["rrmse"]))
+
+
+def ratio_sigma(a, b, t):
+    """σ of log(e_AUTO(t) / e_other(t)). Independent images: both images' error noise and both timings' noise
+    (an error at equal time moves by half the log-time error, e ∝ t^−½). AUTO rendering the other's very images:
+    the image noise cancels and what is left is the scatter of half the log time ratio over the counts."""
+    if same_images(a, b):
+        x = [0.5 * math.log(ta / tb) for n, ta, tb in zip(a["samples"], a["time"], b["time"])
+             if n >= TIME_NOISE_MIN_SAMPLES and ta > 0 and tb > 0]
+        if len(x) < 2:
+            return 0.0
+        m = sum(x) / len(x)
+        return math.sqrt(sum((v - m) ** 2 for v in x) / (len(x) - 1))
+    return math.sqrt(a["rrmse_sigma"][-1] ** 2 + sigma_at(b, t) ** 2 +
+                     0.25 * (time_log_sigma(a) ** 2 + time_log_sigma(b) ** 2))
+
+
+def verdict(r, sigma, target):
+    """pass: r ≤ target; within noise: above it by less than NOISE_Z σ (not distinguishable from meeting it);
+    FAIL: above it by more."""
+    if r is None:
+        return "—"
+    if r <= target:
+        return "pass"
+    return "within noise" if math.log(r / target) <= NOISE_Z * sigma else "**FAIL**"
+
+
+def auto_rows(scene_names, configs, results):
+    """Per scene: (markdown row, reason line, verdicts) of the acceptance table."""
+    out = []
     for scene in scene_names:
         labels = [c[0] for c in configs[scene]]
         if "Candela AUTO" not in labels:
             continue
         a = results[(scene, "Candela AUTO")]
-        t = a["time"][-1]
-        e_auto = error_at(a, t)
+        t, e_auto = a["time"][-1], a["rrmse"][-1]   # AUTO's largest count: its time sets the equal time
         singles = {label: error_at(results[(scene, label)], t) for label in labels
                    if label.startswith("Candela ") and label != "Candela AUTO"}
         singles = {k: v for k, v in singles.items() if v}
@@ -443,23 +565,71 @@ def auto_table(scene_names, configs, results):
         share = (last["analysis_ms"] / 1e3 / last["wall_seconds"]
                  if last.get("analysis_ms") is not None and last.get("wall_seconds") else None)
 
-        def r(x):
-            return f"{e_auto / x:.2f}" if e_auto and x else "—"
-        rows.append(f"| {scene} | {last.get('choice', '?')} | {r(singles.get(best))} ({best or '—'}) | "
-                    f"{r(singles.get(path))} | {r(cycles)} | "
-                    f"{'—' if share is None else f'{100 * share:.1f} %'} |")
+        def judged(label, target):
+            if not label or not e_auto:
+                return "—", "—"
+            r = e_auto / singles[label]
+            sig = ratio_sigma(a, results[(scene, label)], t)
+            if not math.isfinite(sig):   # an error figure not above the reference's own noise
+                return f"{r:.2f} ×/÷ ∞ (reference noise)", verdict(r, sig, target)
+            return f"{r:.2f} ×/÷ {math.exp(sig):.2f}", verdict(r, sig, target)
+        r_best, v_best = judged(best, AUTO_TARGETS[0])
+        r_path, v_path = judged(path, AUTO_TARGETS[1])
+        r_cyc = f"{e_auto / cycles:.2f}" if e_auto and cycles else "—"
+        others = ", ".join(f"{k[len('Candela '):]} {v:.3g}" for k, v in sorted(singles.items(), key=lambda kv: kv[1]))
+        row = (f"| {scene} | {last.get('choice', '?')} | {e_auto:.3g} | {others} | {r_best} ({(best or '—')[8:]}) | "
+               f"{v_best} | {r_path} | {v_path} | {r_cyc} | {'—' if share is None else f'{100 * share:.1f} %'} |")
+        out.append((scene, row, f"- {scene}: {last.get('method', '?')}", (v_best, v_path)))
+    return out
+
+
+def auto_table(scene_names, configs, results):
+    """The acceptance table of issue 19 (docs/auto.md): per scene, AUTO's choice, its rel. RMSE at equal time (its
+    own time at its largest sample count) divided by the best single Candela integrator's, by PATH's (the default
+    sampler's) and by Cycles', each against its target with a verdict, and the analysis (static features + pilot)
+    as a share of that render's wall time. Accuracy scenes and held-out scenes in separate tables."""
+    rows = auto_rows(scene_names, configs, results)
     if not rows:
         return []
-    return ["## AUTO at equal time", "",
-            "Issue 19's acceptance table: AUTO's relative RMSE at its own time for the largest sample count, divided "
-            "by each configuration's at the same time (log-log interpolation between measured points, slope −0.5 "
-            f"beyond them); targets ≤ {AUTO_TARGETS[0]}× the best single integrator's and ≤ {AUTO_TARGETS[1]}× "
-            "PATH's. The analysis share is AUTO's logged analysis time (static features and pilot) over that "
-            "render's wall time. These scenes are the ones the policy was written on; the held-out set is not "
-            "part of this report yet.", "",
-            "| scene | AUTO's choice | ratio to best (which) | ratio to PATH | ratio to Cycles | analysis share |",
-            "|---|---|---|---|---|---|", *rows, ""]
-
+    held = set(held_out_scenes())
+    head = ["| scene | AUTO's choice | AUTO rel. RMSE | each integrator's rel. RMSE at AUTO's time | ratio to best "
+            f"(which) | ≤ {AUTO_TARGETS[0]}× best | ratio to PATH | ≤ {AUTO_TARGETS[1]}× PATH | ratio to Cycles "
+            "| analysis share |", "|---|---|---|---|---|---|---|---|---|---|"]
+    md = ["## AUTO at equal time", "",
+          "Issue 19's acceptance table: AUTO's relative RMSE at its own time for the largest sample count, divided "
+          "by each configuration's at the same time (log-log interpolation between its measured points, slope −0.5 "
+          f"beyond them); targets ≤ {AUTO_TARGETS[0]}× the best single integrator's and ≤ {AUTO_TARGETS[1]}× "
+          "PATH's (the default sampler). The analysis share is AUTO's logged analysis time (static features and "
+          "pilot) over that render's wall time; the pilot's time is in AUTO's time (its set-up is PATH's, so "
+          "nothing of the analysis is subtracted as set-up).", "",
+          "**Noise.** Each ratio is given as r ×/÷ f, f = e^σ with σ the standard error of log r: for two "
+          "independent images, σ² = σ_A² + σ_B² + ¼(τ_A² + τ_B²), where σ_X is the standard error of log(rel. RMSE) "
+          "of X's image (from the scatter of the squared error over 2 × 2-pixel tiles, "
+          "`accuracy_stats.rrmse_log_sigma`) and τ_X the scatter of X's log(time per sample) over its counts ≥ "
+          f"{TIME_NOISE_MIN_SAMPLES} (the load; an error at equal time moves by half the log-time error). When AUTO "
+          "rendered the very images of the integrator it is compared with (same seed, same integrator: equal errors "
+          "at every count) the image noise cancels and σ is the scatter of ½ log(time ratio) over the counts ≥ "
+          f"{TIME_NOISE_MIN_SAMPLES}. Verdict: *pass* if r ≤ target; *within noise* if r exceeds the target by "
+          f"less than {NOISE_Z:g} σ (a false FAIL rate of about 2 % per row for an AUTO exactly on target); "
+          f"**FAIL** beyond. The best single integrator is the minimum of noisy estimates, so the ratio to it is "
+          "biased slightly high where two integrators are close.", ""]
+    for title, names in (("Accuracy scenes (the policy's rules were written and tuned on these)",
+                          [r for r in rows if r[0] not in held]),
+                         ("Held-out scenes (examples/scenes.py HELD_OUT: not used for tuning)",
+                          [r for r in rows if r[0] in held])):
+        if not names:
+            continue
+        md += [f"### {title}", "", *head, *(r[1] for r in names), ""]
+        met = sum(1 for r in names if "FAIL" not in r[3][0] and "FAIL" not in r[3][1])
+        md += [f"Both targets met (pass or within noise) on {met} of {len(names)} scenes.", ""]
+    md += ["AUTO's status line per scene:", "", *(r[2] for r in rows), ""]
+    if MEASURED:
+        md += ["Read back with --reuse (measured by an earlier invocation into the same work directory; every "
+               "configuration of a scene always comes from one invocation, round-robin): " +
+               "; ".join(f"{k} at {w} by build {b}" for k, (w, b) in MEASURED.items()) +
+               f". Measured by this invocation (build {build_fingerprint()}): " +
+               (", ".join(k for k in scene_names if k not in MEASURED) or "none") + ".", ""]
+    return md
 
 if __name__ == "__main__":
     main()

@@ -68,6 +68,21 @@ def errors(image, ref_a, ref_b):
             "top_share": 1.0 - float(np.sum(flat_d2[keep])) / total if total > 0 else 0.0}
 
 
+def rrmse_log_sigma(image, ref_a, ref_b, block=2):
+    """σ of log(rel. RMSE) of one image: the standard error of the mean squared error (less the reference's noise)
+    over the image's pixels, from the scatter of its means over block × block tiles (a tile holds a pixel and the
+    neighbours the reconstruction filter correlates it with, so tiles are close to independent), halved for the
+    square root (delta method). It is the noise of the error figure itself: another seed would move the rel. RMSE
+    by about this factor in logs. Heavy-tailed errors (fireflies) make it large, as they should."""
+    ref = 0.5 * (ref_a + ref_b)
+    e = (image - ref) ** 2 - 0.25 * (ref_a - ref_b) ** 2
+    h, w = (e.shape[0] // block) * block, (e.shape[1] // block) * block
+    tiles = e[:h, :w].reshape(h // block, block, w // block, block).mean(axis=(1, 3)).ravel()
+    mean = float(np.mean(tiles))
+    if tiles.size < 2 or mean <= 0:
+        return float("inf")
+    return 0.5 * float(np.std(tiles, ddof=1)) / (math.sqrt(tiles.size) * mean)
+
 def cost_per_sample(samples, cpu_seconds):
     """Theil–Sen slope of CPU seconds against samples: the median of all pairwise slopes."""
     slopes = [(t1 - t0) / (n1 - n0) for i, (n0, t0) in enumerate(zip(samples, cpu_seconds))

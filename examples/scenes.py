@@ -9,7 +9,9 @@ light and a dim sky), "many_lights" (64 small point lights of very different pow
 for the light-selection strategies), "room_window" (a diffuse room lit by the sun and the sky through a window: light
 that has bounced lights most of it), "caustic" (a glass sphere's caustic on a floor under a small light), "door"
 (Veach's door ajar: a room lit only through a gap from a lamp in a second room), and "glossy_door" (the same with a
-rough metal panel facing the lamp and a glossy floor before the camera: glossy-diffuse-glossy light). Every builder clears the scene and
+rough metal panel facing the lamp and a glossy floor before the camera: glossy-diffuse-glossy light); HELD_OUT lists
+the scenes AUTO's policy was not tuned on ("mirror_interior", "glossy_lamps", "outdoor"; docs/auto.md, "Acceptance").
+Every builder clears the scene and
 applies the shared render settings of cornell_box.configure_render / configure_cycles / configure_candela (same
 bounces, filter and seed).
 """
@@ -318,9 +320,95 @@ def build_door(scene, glossy_indirect=False):
     return 4 / 3
 
 
+# The held-out scenes of AUTO's acceptance measurement (docs/auto.md, "Acceptance"): AUTO's policy was not tuned on
+# them; bench/accuracy.py reports them apart from the accuracy scenes.
+HELD_OUT = ["mirror_interior", "glossy_lamps", "outdoor"]
+
+
+def build_mirror_interior(scene):
+    """A closed 4 × 4 × 2.6 m diffuse room lit only by a small glowing sphere (radius 8 cm) near the ceiling, with a
+    perfect mirror (glossy, roughness 0) covering most of one wall and a diffuse block: the mirror casts the light's
+    reflection onto the floor and the far wall along L S D paths, which a path tracer finds only by hitting the small
+    sphere through the mirror."""
+    walls, floor = diffuse("Walls", (0.7, 0.7, 0.68)), diffuse("Floor", (0.5, 0.4, 0.3))
+    deg = math.radians
+    rectangle(scene, "Floor", floor, Matrix.Diagonal((2.0, 2.0, 1, 1)))
+    rectangle(scene, "Ceiling", walls, Matrix.Translation((0, 0, 2.6)) @ Matrix.Rotation(math.pi, 4, "X") @
+              Matrix.Diagonal((2.0, 2.0, 1, 1)))
+    for name, matrix in (("Back", Matrix.Translation((0, 2, 1.3)) @ Matrix.Rotation(deg(90), 4, "X")),
+                         ("Front", Matrix.Translation((0, -2, 1.3)) @ Matrix.Rotation(deg(-90), 4, "X")),
+                         ("Left", Matrix.Translation((-2, 0, 1.3)) @ Matrix.Rotation(deg(90), 4, "Y") @
+                          Matrix.Rotation(deg(90), 4, "Z")),
+                         ("Right", Matrix.Translation((2, 0, 1.3)) @ Matrix.Rotation(deg(-90), 4, "Y") @
+                          Matrix.Rotation(deg(90), 4, "Z"))):
+        rectangle(scene, name, walls, matrix @ Matrix.Diagonal((2.0, 1.3, 1, 1)))
+    # The mirror: 3 × 1.6 m on the right wall, 2 cm in front of it, facing −x.
+    rectangle(scene, "Mirror", glossy("Mirror", (0.9, 0.9, 0.9), 0.0, "GGX"),
+              Matrix.Translation((1.98, 0.0, 1.2)) @ Matrix.Rotation(deg(-90), 4, "Y") @ Matrix.Diagonal((0.8, 1.5, 1, 1)))
+    cube(scene, "Block", diffuse("Block", (0.2, 0.35, 0.6)),
+         Matrix.Translation((-0.6, 0.8, 0.45)) @ Matrix.Diagonal((0.45, 0.45, 0.45, 1)))
+    sphere(scene, "Bulb", emission("Bulb", (1.0, 0.95, 0.85), 400.0), (-0.9, -0.5, 2.1), 0.08, segments=24, rings=12)
+    camera(scene, (-1.85, -1.85, 1.5), (84.0, 0.0, -45.0), lens=16.0)
+    world(scene, (0, 0, 0), 0.0)
+    return 4 / 3
+
+
+def build_glossy_lamps(scene):
+    """A room with a glossy floor (GGX 0.15) and a glossy and a rough metal sphere, lit by twelve small soft point
+    lights of different powers and colours and a dim ceiling panel: glossy reflections of many small lights, no
+    delta surface."""
+    walls = diffuse("Walls", (0.65, 0.65, 0.62))
+    deg = math.radians
+    rectangle(scene, "Floor", glossy("Floor", (0.45, 0.4, 0.35), 0.15, "GGX"), Matrix.Diagonal((3.0, 3.0, 1, 1)))
+    rectangle(scene, "Ceiling", walls, Matrix.Translation((0, 0, 3.0)) @ Matrix.Rotation(math.pi, 4, "X") @
+              Matrix.Diagonal((3.0, 3.0, 1, 1)))
+    for name, matrix in (("Back", Matrix.Translation((0, 3, 1.5)) @ Matrix.Rotation(deg(90), 4, "X")),
+                         ("Left", Matrix.Translation((-3, 0, 1.5)) @ Matrix.Rotation(deg(90), 4, "Y") @
+                          Matrix.Rotation(deg(90), 4, "Z")),
+                         ("Right", Matrix.Translation((3, 0, 1.5)) @ Matrix.Rotation(deg(-90), 4, "Y") @
+                          Matrix.Rotation(deg(90), 4, "Z"))):
+        rectangle(scene, name, walls, matrix @ Matrix.Diagonal((3.0, 1.5, 1, 1)))
+    sphere(scene, "Metal", glossy("Metal", (0.9, 0.75, 0.5), 0.08, "GGX"), (-0.8, 0.5, 0.6), 0.6)
+    sphere(scene, "Rough", glossy("Rough", (0.7, 0.7, 0.75), 0.35, "GGX"), (0.9, 1.0, 0.5), 0.5)
+    cube(scene, "Plinth", diffuse("Plinth", (0.6, 0.25, 0.2)),
+         Matrix.Translation((0.2, -0.6, 0.25)) @ Matrix.Diagonal((0.3, 0.3, 0.25, 1)))
+    rng = random.Random(19)
+    palette = ((1.0, 0.85, 0.7), (0.7, 0.8, 1.0), (1.0, 0.6, 0.4), (0.8, 1.0, 0.8))
+    for i in range(12):
+        location = (rng.uniform(-2.6, 2.6), rng.uniform(-1.5, 2.6), rng.uniform(1.2, 2.8))
+        point_light(scene, f"Lamp{i}", location, 10 ** rng.uniform(0.5, 1.7), palette[i % len(palette)], radius=0.1)
+    area_light(scene, "Panel", (0.0, 0.5, 2.98), 1.0, 30.0)
+    camera(scene, (0.0, -2.9, 1.6), (80.0, 0.0, 0.0), lens=20.0)
+    world(scene, (0, 0, 0), 0.0)
+    return 4 / 3
+
+
+def build_outdoor(scene):
+    """Outdoors: a sun 3° wide and a uniform blue sky over a diffuse ground with a few blocks, a chrome ball
+    (glossy, roughness 0) and a glass sphere: direct sun and sky dominate, the ball and the glass make small L S+ D
+    caustics that the policy's static features see."""
+    rectangle(scene, "Ground", diffuse("Ground", (0.4, 0.38, 0.33)), Matrix.Diagonal((30, 30, 1, 1)))
+    for i, (centre, half, rgb) in enumerate((((-1.5, 1.5, 0.5), (0.5, 0.5, 0.5), (0.7, 0.6, 0.5)),
+                                            ((1.8, 2.5, 1.0), (0.6, 0.6, 1.0), (0.5, 0.55, 0.6)),
+                                            ((0.3, 3.5, 0.3), (1.5, 0.3, 0.3), (0.6, 0.3, 0.25)))):
+        cube(scene, f"Block{i}", diffuse(f"Block{i}", rgb), Matrix.Translation(centre) @ Matrix.Diagonal((*half, 1)))
+    sphere(scene, "Chrome", glossy("Chrome", (0.9, 0.9, 0.9), 0.0, "GGX"), (0.2, 0.8, 0.5), 0.5)
+    sphere(scene, "Glass", glass("Glass"), (-0.4, -0.6, 0.35), 0.35, segments=48, rings=24)
+    sun = bpy.data.lights.new("Sun", 'SUN')
+    sun.energy, sun.angle = 4.0, math.radians(3.0)
+    ob = bpy.data.objects.new("Sun", sun)
+    from mathutils import Vector
+    ob.rotation_euler = Vector((-0.5, 0.6, -0.62)).normalized().to_track_quat('-Z', 'Y').to_euler()
+    scene.collection.objects.link(ob)
+    world(scene, (0.45, 0.6, 1.0), 0.8)
+    camera(scene, (0.0, -5.0, 1.6), (80.0, 0.0, 0.0), lens=32.0)
+    return 4 / 3
+
+
 BUILDERS = {"soft_shadow": build_soft_shadow, "veach_mis": build_veach_mis, "glossy": build_glossy,
             "many_lights": build_many_lights, "room_window": build_room_window, "caustic": build_caustic,
-            "door": build_door, "glossy_door": lambda scene: build_door(scene, glossy_indirect=True)}
+            "door": build_door, "glossy_door": lambda scene: build_door(scene, glossy_indirect=True),
+            "mirror_interior": build_mirror_interior, "glossy_lamps": build_glossy_lamps, "outdoor": build_outdoor}
 NAMES = ["cornell_box", *BUILDERS]
 
 

@@ -131,6 +131,40 @@ TEST(AutoPolicy, PilotSharesDecideWhereTheyCan) {
     EXPECT_EQ(choice_of(point).rule, "caustics_bdpt");
 }
 
+// Rule indirect_irradiance_cache: a diffuse scene whose pilot finds at least 30 % of the lit energy (direct +
+// indirect + caustic) indirect goes to the irradiance cache; below that share, or with more than 5 % of the area
+// glossy, specular or transmissive, PATH; the emitted class does not count (the Cornell box's visible panel).
+TEST(AutoPolicy, IndirectDiffuseLightGoesToTheIrradianceCache) {
+    SceneFeatures f = features_of(cornell_box());
+    ASSERT_EQ(choice_of(f).rule, "default");  // without a pilot, the static features alone
+    f.pilot_measured = true;
+    f.pilot.total_mean = 1.0;
+    f.pilot.mean = {0.53, 0.24, 0.23, 0.0};  // the Cornell box's pilot at 96 px: 49 % of the lit energy indirect
+    f.pilot.variance = {0.94, 0.0, 0.06, 0.0};
+    AutoChoice c = choice_of(f);
+    EXPECT_EQ(c.integrator, "IRRADIANCE_CACHE");
+    EXPECT_EQ(c.rule, "indirect_irradiance_cache");
+    EXPECT_EQ(c.reason.rfind("49 % of the lit energy is indirect", 0), 0u) << c.reason;
+    f.pilot.mean = {0.53, 0.35, 0.12, 0.0};  // 26 %: under the threshold
+    EXPECT_EQ(choice_of(f).rule, "default");
+    f.pilot.mean = {0.0, 0.0, 0.0, 0.0};  // nothing lit measured: no share, no cache
+    EXPECT_EQ(choice_of(f).rule, "default");
+    f.pilot.mean = {0.53, 0.24, 0.23, 0.0};
+    f.glossy_area = 0.06 * f.total_area;  // 6 % glossy: not the diffuse scenes the rule was measured on
+    EXPECT_EQ(choice_of(f).rule, "default");
+    // Rule indirect_only_bdpt: 80 % or more of the lit energy indirect (the door ajar's pilot: 95 %) goes to BDPT first,
+    // diffuse or not.
+    f.pilot.mean = {0.0, 0.05, 0.95, 0.0};
+    c = choice_of(f);
+    EXPECT_EQ(c.integrator, "BDPT");
+    EXPECT_EQ(c.rule, "indirect_only_bdpt");
+    EXPECT_EQ(c.reason.rfind("95 % of the lit energy arrives after bounces", 0), 0u) << c.reason;
+    // Without the cache in the build, PATH.
+    f.pilot.mean = {0.53, 0.24, 0.23, 0.0};
+    f.glossy_area = 0.0;
+    EXPECT_EQ(choose_integrator(f, [](const std::string& n) { return n != "IRRADIANCE_CACHE"; }).integrator, "PATH");
+}
+
 // AUTO renders the chosen integrator's image, bit for bit, and says what it chose in the log and the status.
 void expect_auto_is(SceneArrays arrays, const char* expected) {
     Params base = basic_params(16, 12, 4, 3);
@@ -171,8 +205,11 @@ void expect_auto_is(SceneArrays arrays, const char* expected) {
 }
 
 TEST(AutoIntegrator, RendersTheChosenIntegratorsImageBitForBit) {
-    expect_auto_is(cornell_box(), "PATH");
+    // The Cornell box's pilot (its panel unseen from this camera) finds 41 % of the lit energy indirect.
+    expect_auto_is(cornell_box(), "IRRADIANCE_CACHE");
     expect_auto_is(glass_caustic(), "BDPT");
+    // Every light kind; its pilot here finds 28 % of the lit energy indirect, under the cache's 30 %: rule default.
+    expect_auto_is(lit_room(511, false), "PATH");
 }
 
 }  // namespace

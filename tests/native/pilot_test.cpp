@@ -146,6 +146,10 @@ TEST(Pilot, DeterministicForASeed) {
 TEST(Pilot, SettingsScaleWithTheFilm) {
     EXPECT_EQ(pilot_settings_for(0, 0, 1920, 1080, 64, 12, 0, 0).downscale, 4);
     EXPECT_EQ(pilot_settings_for(0, 0, 100, 64, 64, 12, 0, 0).downscale, 2);
+    // 96 × 54 (16:9 at make accuracy-auto's size): 2×, 1/32 of a 64-sample render's paths (docs/auto.md, "Acceptance":
+    // at 1× the pilot was 7–11 % of the render's time on the glossy and Veach scenes)
+    EXPECT_EQ(pilot_settings_for(0, 0, 96, 54, 64, 12, 0, 0).downscale, 2);
+    EXPECT_EQ(pilot_settings_for(0, 0, 40, 31, 64, 12, 0, 0).downscale, 1);
     EXPECT_EQ(pilot_settings_for(0, 0, 16, 12, 64, 12, 0, 0).downscale, 1);
     EXPECT_EQ(pilot_settings_for(0, 0, 16, 12, 64, 12, 0, 0).samples, 8);
     EXPECT_EQ(pilot_settings_for(0, 0, 16, 12, 1024, 12, 0, 0).samples, 8);

@@ -27,6 +27,27 @@ constexpr double k_caustic_variance_share = 0.5;  // measured caustic variance s
 bool measured_caustics(const SceneFeatures& f) {
     return f.pilot_measured && f.pilot.variance_share(PathClass::Caustic) >= k_caustic_variance_share;
 }
+// The pilot's indirect share of the lit energy (all but the emitted class) that calls for the irradiance cache, and
+// the share of the area that may be other than diffuse (docs/auto.md, "Acceptance": the Cornell box's 0.49 and the
+// room lit through a window's 0.56 against ≤ 0.13 on every other accuracy scene; both diffuse-only).
+constexpr double k_indirect_energy_share = 0.3;
+// The indirect share above which the light reaches what the camera sees only after bounces, from a source the
+// camera's paths rarely find (Veach's door ajar: 0.95; docs/auto.md, "Acceptance"): light subpaths carry it (BDPT).
+constexpr double k_indirect_only_share = 0.8;
+constexpr double k_non_diffuse_area_share = 0.05;
+
+double lit_indirect_share(const SceneFeatures& f) {
+    const double lit = f.pilot.mean[int(PathClass::Direct)] + f.pilot.mean[int(PathClass::Indirect)] +
+                       f.pilot.mean[int(PathClass::Caustic)];
+    return lit > 0.0 ? f.pilot.mean[int(PathClass::Indirect)] / lit : 0.0;
+}
+bool indirect_diffuse(const SceneFeatures& f) {
+    return f.pilot_measured && lit_indirect_share(f) >= k_indirect_energy_share &&
+           f.area_share(f.glossy_area + f.specular_area + f.transmissive_area) <= k_non_diffuse_area_share;
+}
+bool indirect_only(const SceneFeatures& f) {
+    return f.pilot_measured && lit_indirect_share(f) >= k_indirect_only_share;
+}
 bool caustics(const SceneFeatures& f) { return f.caustic_paths; }
 bool specular_large_lights(const SceneFeatures& f) { return f.specular_area > 0.0 && !f.caustic_paths; }
 bool always(const SceneFeatures&) { return true; }
@@ -60,6 +81,16 @@ const std::vector<AutoRule>& auto_rules() {
          [](const SceneFeatures& f) -> std::string {
              return "delta surfaces (" + percent(f.area_share(f.specular_area)) +
                     " of the area) lit only by large lights a path tracer hits";
+         }},
+        {"indirect_only_bdpt", "BDPT", &indirect_only,
+         [](const SceneFeatures& f) -> std::string {
+             return percent(lit_indirect_share(f)) +
+                    " of the lit energy arrives after bounces: light paths find it (pilot)";
+         }},
+        {"indirect_irradiance_cache", "IRRADIANCE_CACHE", &indirect_diffuse,
+         [](const SceneFeatures& f) -> std::string {
+             return percent(lit_indirect_share(f)) +
+                    " of the lit energy is indirect, on diffuse surfaces: cached irradiance (pilot)";
          }},
         {"default", "PATH", &always,
          [](const SceneFeatures&) -> std::string {

@@ -41,7 +41,7 @@ PilotSettings pilot_settings_for(int x0, int y0, int width, int height, int samp
                                  int threads) {
     PilotSettings s;
     const int short_side = std::min(width, height);
-    s.downscale = short_side >= 128 ? 4 : short_side >= 64 ? 2 : 1;
+    s.downscale = short_side >= 128 ? 4 : short_side >= 32 ? 2 : 1;
     s.samples = std::clamp(samples / 8, 2, 8);  // at least 2: a per-pixel variance
     s.max_bounces = max_bounces;
     s.seed = seed;

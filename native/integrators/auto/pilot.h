@@ -44,8 +44,8 @@ struct PilotSettings {
 
 /// The pilot's settings for a render of `samples` per pixel over a film of width × height (docs/auto.md): samples/8
 /// paths per pilot pixel (2 to 8: two for a per-pixel variance) on a grid 4× coarser per axis when the film is at
-/// least 128 pixels on its short side (2× from 64, 1× below): 1/128 of a 64-sample render's camera paths from 128
-/// pixels up, 1/8 below 64 pixels (more for under 16 samples).
+/// least 128 pixels on its short side (2× from 32, 1× below): 1/128 of a 64-sample render's camera paths from 128
+/// pixels up, 1/32 from 32, 1/8 below 32 pixels (more for under 16 samples).
 PilotSettings pilot_settings_for(int x0, int y0, int width, int height, int samples, int max_bounces, uint64_t seed,
                                  int threads);
 
