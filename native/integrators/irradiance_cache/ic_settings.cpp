@@ -20,7 +20,7 @@ ParamSpec path_spec(const char* key) {
 
 const std::vector<ParamSpec>& IcSettings::specs() {
     static const std::vector<ParamSpec> specs = {
-        float_param("ic_error", "Error", 0.15, 1e-4, 1.0,
+        float_param("ic_error", "Error", 0.2, 1e-4, 1.0,
                     "Ward's a: a record is used where its error ‖x − x_i‖/R_i + √(1 − n·n_i) is below this. Smaller: "
                     "more records, less interpolation error (records grow about as 1/a²)",
                     "Irradiance Cache"),

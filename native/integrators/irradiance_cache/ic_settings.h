@@ -14,7 +14,7 @@ namespace candela {
 struct IcSettings {
     PixelSampling pixel;
     int max_bounces = 12;      // path length, counted from the camera for camera paths, from the record for gathers
-    float error = 0.15f;       // Ward's a
+    float error = 0.2f;        // Ward's a
     int gather_rays = 1024;    // M × N ≈ this, N ≈ πM
     float min_spacing = 1.5f;  // validity radius a·R_i clamped to [min, max] pixel footprints (Tabellion &
     float max_spacing = 20.f;  // Lamorlette 2004); min 0 = no lower clamp

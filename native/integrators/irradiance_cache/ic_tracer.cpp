@@ -29,22 +29,28 @@ thread_local std::vector<IcRecord>* t_sink = nullptr;
 // a sample sees depends neither on the threads nor on the tiles). Without it every sample of a pass that lands in
 // a gap between the cache's records would gather its own record there, and the merge keep one.
 //
-// The same pixel's samples mostly meet the same surface within a pixel's footprint: the first lookup of a pixel
-// (in a pass) collects the records whose spheres come within two footprints of its point (the anchor), and the
-// later lookups closer than that to the anchor test only those candidates — the records and the order a full
-// query would visit, so the same value, for a fraction of the octree walk.
+// The same pixel's samples mostly meet the same surface within a few pixel footprints: a lookup of a pixel (in a
+// pass) that is near none of the pixel's anchors makes its point an anchor — it collects the records whose spheres
+// come within two footprints of it — and the later lookups closer than that to an anchor test only its candidates:
+// the records and the order a full query would visit, so the same value, for a fraction of the octree walk. Two
+// anchors, the older replaced by a third, serve a pixel that sees two surfaces (a silhouette, an edge).
+struct PixelAnchor {
+    Vec3 at{0.f};
+    float range = -1.f;  // < 0: unused
+    std::vector<uint32_t> candidates;
+};
 struct PixelRecords {
+    static constexpr int k_anchors = 2;
     int px = -1, py = -1;
     std::vector<IcRecord> records;
-    Vec3 anchor{0.f};
-    float range = -1.f;  // < 0: no anchor yet
-    std::vector<uint32_t> candidates;
+    PixelAnchor anchors[k_anchors];
+    int next = 0;  // the anchor a new one replaces
     void reset(int x, int y) {
         px = x;
         py = y;
         records.clear();
-        range = -1.f;
-        candidates.clear();
+        for (PixelAnchor& a : anchors) a.range = -1.f;
+        next = 0;
     }
 };
 thread_local PixelRecords t_pixel;
@@ -58,15 +64,18 @@ void IcTracer::set_sink(std::vector<IcRecord>* sink) {
 
 bool IcTracer::camera_lookup(const Vec3& x, const Vec3& n, float footprint, int px, int py, Color* E) const {
     if (t_pixel.px != px || t_pixel.py != py) t_pixel.reset(px, py);
-    if (t_pixel.range < 0.f && footprint > 0.f && std::isfinite(footprint)) {
-        t_pixel.anchor = x;
-        t_pixel.range = 2.f * footprint;
-        m_cache.candidates_near(x, t_pixel.range, &t_pixel.candidates);
-    }
     // 0.99: a margin against rounding in the candidates' own distance test.
-    if (t_pixel.range > 0.f && length_squared(x - t_pixel.anchor) < sqr(0.99f * t_pixel.range))
-        return m_cache.interpolate_among(t_pixel.candidates, x, n, E);
-    return m_cache.interpolate(x, n, E);
+    for (const PixelAnchor& a : t_pixel.anchors)
+        if (a.range > 0.f && length_squared(x - a.at) < sqr(0.99f * a.range))
+            return m_cache.interpolate_among(a.candidates, x, n, E);
+    if (!(footprint > 0.f) || !std::isfinite(footprint)) return m_cache.interpolate(x, n, E);
+    PixelAnchor& a = t_pixel.anchors[t_pixel.next];
+    t_pixel.next = (t_pixel.next + 1) % PixelRecords::k_anchors;
+    a.at = x;
+    a.range = 2.f * footprint;
+    a.candidates.clear();
+    m_cache.candidates_near(x, a.range, &a.candidates);
+    return m_cache.interpolate_among(a.candidates, x, n, E);
 }
 
 IcTracer::IcTracer(const Scene& scene, const IcSettings& settings, const LightSampler& light_sampler,
