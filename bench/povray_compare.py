@@ -155,7 +155,8 @@ def main():
     if shutil.which("povray") is None:
         raise SystemExit("povray is not installed (Debian's `povray`: make deps)")
     accuracy.ARGS = argparse.Namespace(build=a.build, out=a.out, size=a.size, threads=a.threads, repeats=1,
-                                       max_samples=a.max_samples, ref_factor=8)
+                                       max_samples=a.max_samples, ref_factor=8, reference_integrator={},
+                                       reuse=False, rerun=[])
     native = accuracy.native_module()
     a.out.mkdir(parents=True, exist_ok=True)
     started = time.time()
