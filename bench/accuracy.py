@@ -334,12 +334,16 @@ def target_cells(p, metric, cyc, cyc_line):
     slope = "—" if line is None else (f"{line['slope']:.2f} ± {line['sigma']:.2f}" +
                                       ("" if stats.fit_is_usable(line) else " (not used)"))
     t2, how2 = stats.time_to(0.02, p["samples"], p["time"], p[metric], line)
+    how_text, log_sigma = stats.crossing(0.02, p["samples"], p["time"], p[metric], line,
+                                         p["rrmse_sigma"] if metric == "rrmse" else None)
+    if log_sigma is not None:   # the error figure's noise and the load's scatter of the render times
+        how_text += f" (×/÷ {math.exp(math.hypot(log_sigma, time_line_log_sigma(p))):.2f})"
     time_ratio = "—"
     if cyc:
         t_cyc, how_cyc = stats.time_to(0.02, cyc["samples"], cyc["time"], cyc[metric], cyc_line)
         if how2 != "beyond" and how_cyc != "beyond":   # both measured or inside the extrapolation bound
             time_ratio = ratio(t2, t_cyc)
-    return cells, slope, time_ratio
+    return cells, slope, time_ratio, how_text
 
 
 def scene_tables(scene, configs, results, n_max):
@@ -348,23 +352,24 @@ def scene_tables(scene, configs, results, n_max):
     cyc = results.get((scene, "Cycles"))
     fits = {m: stats.fit(cyc["samples"], cyc[m], cyc[f]) if cyc else None
             for m, f in (("rrmse", "ref_noise_fraction"), ("robust", "robust_ref_noise_fraction"))}
-    main = [f"| configuration | 5 % | 2 % | 1 % | slope ± σ | time vs Cycles at 2 % | time vs Cycles at {n_max} spp "
+    main = [f"| configuration | 5 % | 2 % | 1 % | 2 % reached how | slope ± σ | time vs Cycles at 2 % "
+            f"| time vs Cycles at {n_max} spp "
             f"| rel. RMSE at {n_max} spp | MSE vs Cycles at {n_max} spp | rel. MSE at {n_max} spp "
             f"| worst {100 * stats.TRIM:g} % of pixels' share of the squared error |",
-            "|---|---|---|---|---|---|---|---|---|---|---|"]
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     robust = [f"Trimmed relative RMSE ({100 * stats.TRIM:g} % of pixels with the largest errors dropped):", "",
-              "| configuration | 5 % | 2 % | 1 % | slope ± σ | time vs Cycles at 2 % "
-              f"| trimmed rel. RMSE at {n_max} spp | its MSE vs Cycles |", "|---|---|---|---|---|---|---|---|"]
+              "| configuration | 5 % | 2 % | 1 % | 2 % reached how | slope ± σ | time vs Cycles at 2 % "
+              f"| trimmed rel. RMSE at {n_max} spp | its MSE vs Cycles |", "|---|---|---|---|---|---|---|---|---|"]
     for label, _, _ in configs:
         p = results[(scene, label)]
-        cells, slope, time_ratio = target_cells(p, "rrmse", cyc, fits["rrmse"])
+        cells, slope, time_ratio, how = target_cells(p, "rrmse", cyc, fits["rrmse"])
         mse_ratio = ratio(p["rrmse"][-1] ** 2, cyc["rrmse"][-1] ** 2) if cyc else "—"
-        main.append(f"| {label} | {' | '.join(cells)} | {slope} | {time_ratio} | "
+        main.append(f"| {label} | {' | '.join(cells)} | {how} | {slope} | {time_ratio} | "
                     f"{ratio(p['time'][-1], cyc['time'][-1]) if cyc else '—'} | {p['rrmse'][-1]:.3g} | {mse_ratio} | "
                     f"{p['relmse'][-1]:.3g} | {100 * p['top_share'][-1]:.0f} % |")
-        cells, slope, time_ratio = target_cells(p, "robust", cyc, fits["robust"])
+        cells, slope, time_ratio, how = target_cells(p, "robust", cyc, fits["robust"])
         mse_ratio = ratio(p["robust"][-1] ** 2, cyc["robust"][-1] ** 2) if cyc else "—"
-        robust.append(f"| {label} | {' | '.join(cells)} | {slope} | {time_ratio} | {p['robust'][-1]:.3g} | "
+        robust.append(f"| {label} | {' | '.join(cells)} | {how} | {slope} | {time_ratio} | {p['robust'][-1]:.3g} | "
                       f"{mse_ratio} |")
     return main + [""] + robust
 
@@ -440,7 +445,16 @@ def write_outputs(scene_names, configs, results, rows, started):
           f"{stats.TIME_TOLERANCE:g}× both for the fit's σ and for a change of regime of Δs = "
           f"{stats.REGIME_DS:g} at s = −0.5 gives F_max = min({stats.F_CAP:.1f}, "
           f"{stats.TIME_TOLERANCE:g}^(|s|/σ)). `~` marks such a time; `> t` means not reached within it "
-          "(t = the last measured time); `—` no usable value.",
+          "(t = the last measured time); `—` no usable value. A time without a mark is measured: interpolated "
+          "(log-log) between the two measured counts whose errors bracket the target.",
+          "- **2 % reached how** says which for the 2 % target: *interpolated N–2N spp* (the counts bracketing "
+          "it), *extrapolated ×F past N spp* (F = that time over the last measured one), *not reached by N spp*, "
+          "*first at N spp* (reached, then lost again by noise). For an interpolated crossing ×/÷ f is its "
+          "time's noise, f = e^σ, σ² = (σ_e/|s|)² + τ²: σ_e the larger standard error of log(rel. RMSE) of the "
+          "two bracketing images (from the scatter of the squared error over 2 × 2-pixel tiles; it understates "
+          "an error made of smooth blotches, such as an irradiance cache's records'), s the local slope "
+          "between them, τ the scatter of log(CPU time) about a straight line t₀ + c·samples over the counts ≥ "
+          f"{TIME_NOISE_MIN_SAMPLES} (the load; c the Theil–Sen cost per sample).",
           "- **Integrators other than PATH** are measured against the same Candela reference, which PATH renders"
           + ("".join(f" ({s.replace('_', ' ')}: {i})" for s, i in ARGS.reference_integrator.items()
                      if s in scene_names)) + ": their error includes their bias (the irradiance cache's interpolation and record noise, which do not "
@@ -499,6 +513,21 @@ def time_log_sigma(p):
     x = [math.log(t / n) for n, t in zip(p["samples"], p["time"]) if n >= TIME_NOISE_MIN_SAMPLES and t > 0]
     if len(x) < 2:
         return 0.0
+    m = sum(x) / len(x)
+    return math.sqrt(sum((v - m) ** 2 for v in x) / (len(x) - 1))
+
+
+def time_line_log_sigma(p):
+    """σ of log(time) of one render about the straight line time ≈ t₀ + c·samples (c the Theil–Sen cost per sample,
+    t₀ the median of time − c·samples), over the counts ≥ TIME_NOISE_MIN_SAMPLES: the load's scatter, also for an
+    integrator with a fixed cost per render that time_log_sigma would count as scatter (the irradiance cache's
+    pre-pass)."""
+    c = p["cost_sequence"]
+    pts = [(n, t) for n, t in zip(p["samples"], p["time"]) if n >= TIME_NOISE_MIN_SAMPLES and t > 0]
+    if len(pts) < 3:
+        return 0.0
+    t0 = sorted(t - c * n for n, t in pts)[len(pts) // 2]
+    x = [math.log(t / max(t0 + c * n, 1e-12)) for n, t in pts]
     m = sum(x) / len(x)
     return math.sqrt(sum((v - m) ** 2 for v in x) / (len(x) - 1))
 

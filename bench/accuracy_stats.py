@@ -160,3 +160,30 @@ def time_to(target, samples, times, errs, line):
         if t <= factor * t_max:
             return t, "extrapolated"
     return t_max, "beyond"
+
+
+def crossing(target, samples, times, errs, line, err_log_sigmas=None):
+    """How the time to `target` was found, for the reader of the report: (text, σ of log(time) or None).
+    text = "interpolated N–2N spp" (between the two measured counts whose errors bracket the target, log-log),
+    "at N spp" (the first count is already below it), "first at N spp" (reached, then lost again by noise),
+    "extrapolated ×F past N spp" (along the fit, F = t / t_last), or "not reached by N spp". σ (interpolated
+    crossings only, with `err_log_sigmas` the σ of log(error) of each point): an error figure off by δ in logs moves
+    the crossing by δ/|s| in log time, s the local slope between the bracketing points; the larger σ of the two
+    is taken. The render times' own scatter (the load) is not in it."""
+    pts = [(n, t, e, (err_log_sigmas or [0.0] * len(errs))[i])
+           for i, (n, t, e) in enumerate(zip(samples, times, errs)) if t > 0 and e > 0]
+    if not pts:
+        return "no data", None
+    if pts[0][2] <= target:
+        return f"at {pts[0][0]} spp", None
+    for (n0, t0, e0, s0), (n1, t1, e1, s1) in zip(pts, pts[1:]):
+        if e0 >= target >= e1 and e1 < e0:
+            slope = (math.log(e1) - math.log(e0)) / (math.log(t1) - math.log(t0)) if t1 != t0 else float("-inf")
+            sigma = max(s0, s1) / abs(slope) if math.isfinite(slope) and slope != 0 else None
+            return f"interpolated {n0}–{n1} spp", sigma
+    if any(e <= target for _, _, e, _ in pts):
+        return f"first at {next(n for n, _, e, _ in pts if e <= target)} spp", None
+    t, how = time_to(target, samples, times, errs, line)
+    if how == "extrapolated":
+        return f"extrapolated ×{t / pts[-1][1]:.2g} past {pts[-1][0]} spp", None
+    return f"not reached by {pts[-1][0]} spp", None

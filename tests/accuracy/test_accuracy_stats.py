@@ -71,3 +71,16 @@ def test_render_times_drop_the_setup():
     setup, times = st.render_times(COUNTS, cpu)
     assert math.isclose(setup, 0.3, rel_tol=1e-9)
     assert all(math.isclose(t, 0.01 * n, rel_tol=1e-9) for t, n in zip(times, COUNTS))
+
+
+def test_crossing_says_interpolated_or_extrapolated():
+    errs = [0.8 * n ** -0.5 for n in COUNTS]            # 0.1 at 64 samples
+    times = [0.01 * n for n in COUNTS]
+    line = st.fit(COUNTS, errs, [0.0] * len(COUNTS))
+    text, sigma = st.crossing(0.8 / math.sqrt(3.0), COUNTS, times, errs, line, [0.02] * len(COUNTS))
+    assert text == "interpolated 2–4 spp" and math.isclose(sigma, 0.04, rel_tol=1e-9)  # δ/|s| = 0.02/0.5
+    assert st.crossing(0.06, COUNTS, times, errs, line)[0] == "extrapolated ×2.8 past 64 spp"
+    assert st.crossing(0.02, COUNTS, times, errs, line)[0] == "not reached by 64 spp"
+    assert st.crossing(0.9, COUNTS, times, errs, line)[0] == "at 1 spp"
+    bumpy = errs[:4] + [0.05, 0.3, 0.3]                   # below 0.06 at 16 spp only
+    assert st.crossing(0.06, COUNTS, times, bumpy, None)[0] == "interpolated 8–16 spp"
