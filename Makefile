@@ -143,6 +143,7 @@ SANITIZE_SKIP := AnalyticLights.SphereLightLightSamplingToAFewTenthsOfAPercent \
     PhotonFurnace.PhotonAndSppmInThePointLightSphere \
     SppmAgreement.CornellBoxAndCausticWithinTwoPercentOfPath \
     SppmConvergence.RmseFallsAsTheCubeRootOfIterations \
+    SppmSceneConvergence.RmseFallsAsTheCubeRootOfIterationsOnTheReferenceScenes \
     SppmSlab.FloorUnderAGlassSlabReceivesTwelveThirteenths \
     VeachMis.StrategiesAgreeAndMisHasTheLeastVarianceOnEveryPlate \
     VertexBsdf.LightSideSamplesFollowTheirDensity \
