@@ -144,6 +144,8 @@ SANITIZE_SKIP := AnalyticLights.SphereLightLightSamplingToAFewTenthsOfAPercent \
     SppmAgreement.CornellBoxAndCausticWithinTwoPercentOfPath \
     SppmConvergence.RmseFallsAsTheCubeRootOfIterations \
     SppmSceneConvergence.RmseFallsAsTheCubeRootOfIterationsOnTheReferenceScenes \
+    CausticMapConvergence.GlassSphereCausticConvergesToBdpt \
+    CausticMapConvergence.GlassSlabMeanIsTwelveThirteenthsAndRmseFallsAsOneOverRootN \
     SppmSlab.FloorUnderAGlassSlabReceivesTwelveThirteenths \
     VeachMis.StrategiesAgreeAndMisHasTheLeastVarianceOnEveryPlate \
     VertexBsdf.LightSideSamplesFollowTheirDensity \

@@ -112,6 +112,23 @@ SceneArrays glass_caustic() {
     return b.arrays();
 }
 
+SceneArrays glass_slab() {
+    MeshBuilder b;
+    const uint32_t floor = b.add_material(Color(k_slab_albedo), Color(0.f));
+    const uint32_t glass = b.add_material(Color(0.f), Color(0.f));
+    b.add_closure(glass, "GLASS", {{"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}, {"ior", 1.5f}});
+    b.add_instance(b.add_quad_z(-1.5f, 1.5f, -1.5f, 1.5f, -2.f, floor));
+    const std::vector<float> at = translation(0.f, 0.f, 0.55f);
+    b.add_instance(b.add_box(Vec3(1.6f, 1.6f, 0.05f), glass), at.data());
+    std::vector<float> sun(light_columns().size(), 0.f);
+    for (int c = 0; c < 3; ++c) sun[c] = 1.f;
+    sun[8] = -1.f;  // direction (0, 0, −1)
+    b.add_light(2, sun);
+    return b.arrays();
+}
+
+double slab_expected() { return double(k_slab_albedo) * k_slab_transmittance / k_pi; }
+
 SceneArrays smooth_lowpoly_sphere() {
     MeshBuilder b;
     const uint32_t m = b.add_material(Color(0.5f), Color(0.f));

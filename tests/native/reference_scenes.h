@@ -34,6 +34,18 @@ SceneArrays cornell_box();
 /// floor's caustic is light → glass → glass → floor, which a path tracer finds only by hitting the small light.
 SceneArrays glass_caustic();
 
+/// The glass slab (docs/verification.md §2.10) in the camera's frame: a floor (albedo k_slab_albedo) at z = −2 facing
+/// the camera at the origin, a glass slab (η 1.5, 0.1 thick) behind the camera at z ∈ [0.5, 0.6], a sun of irradiance
+/// 1 shining down −z through it. The floor's radiance is ρ·T·E₀/π wherever the camera looks (the slab and the floor
+/// reach 1.6 and 1.5 beyond the axis, the view about 0.8): the light the floor reflects back up and the slab returns
+/// adds a relative ρ·R_slab < 2·10⁻⁴ (R_slab < 0.2 for diffuse light), below the tests' resolution. All of the
+/// floor's light has passed the glass: the sun's shadow rays stop at it.
+constexpr float k_slab_albedo = 1.f / 1024.f;  // the floor's
+constexpr double k_slab_transmittance = 12.0 / 13.0;
+SceneArrays glass_slab();
+/// ρ·T·E₀/π, the floor's radiance.
+double slab_expected();
+
 /// A closed, coarsely tessellated sphere (8 × 6) of albedo 0.5 with smooth (radial) shading normals, lit by a point
 /// light near its centre: the camera inside sees shading normals up to 23° off the facets'.
 SceneArrays smooth_lowpoly_sphere();

@@ -160,31 +160,6 @@ TEST(SppmGrid, EqualRadiiEqualBruteForce) {
 
 // ---- the glass slab ----------------------------------------------------------------------------------------
 
-constexpr float k_slab_albedo = 1.f / 1024.f;  // the floor's
-constexpr double k_slab_transmittance = 12.0 / 13.0;
-
-/// docs/verification.md §2.10 in the camera's frame: a floor (albedo k_slab_albedo) at z = −2 facing the camera at
-/// the origin, a glass slab (η 1.5, 0.1 thick) behind the camera at z ∈ [0.5, 0.6], a sun of irradiance 1 shining
-/// down −z through it. The floor's radiance is ρ·T·E₀/π wherever the camera looks (the slab and the floor reach
-/// 1.6 and 1.5 beyond the axis, the view about 0.8): the light the floor reflects back up and the slab returns adds
-/// a relative ρ·R_slab < 2·10⁻⁴ (R_slab < 0.2 for diffuse light), below the tests' resolution.
-SceneArrays glass_slab() {
-    MeshBuilder b;
-    const uint32_t floor = b.add_material(Color(k_slab_albedo), Color(0.f));
-    const uint32_t glass = b.add_material(Color(0.f), Color(0.f));
-    b.add_closure(glass, "GLASS", {{"color_r", 1.f}, {"color_g", 1.f}, {"color_b", 1.f}, {"ior", 1.5f}});
-    b.add_instance(b.add_quad_z(-1.5f, 1.5f, -1.5f, 1.5f, -2.f, floor));
-    const std::vector<float> at = translation(0.f, 0.f, 0.55f);
-    b.add_instance(b.add_box(Vec3(1.6f, 1.6f, 0.05f), glass), at.data());
-    std::vector<float> sun(light_columns().size(), 0.f);
-    for (int c = 0; c < 3; ++c) sun[c] = 1.f;
-    sun[8] = -1.f;  // direction (0, 0, −1)
-    b.add_light(2, sun);
-    return b.arrays();
-}
-
-double slab_expected() { return double(k_slab_albedo) * k_slab_transmittance / k_pi; }
-
 Params slab_params(int iterations, int64_t photons, double alpha) {
     Params p = basic_params(32, 32, iterations, 12);
     p.set("threads", int64_t(2));
