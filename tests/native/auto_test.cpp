@@ -131,6 +131,44 @@ TEST(AutoPolicy, PilotSharesDecideWhereTheyCan) {
     EXPECT_EQ(choice_of(point).rule, "caustics_bdpt");
 }
 
+// Rule caustics_bdpt with a pilot: the caustic must show in the measured variance (≥ 10 %), else PATH and the reason
+// says so (the held-out outdoor scene: 1 % caustic, BDPT at 16× PATH's error); a scene whose power comes partly
+// from a delta light keeps the static rule (the pilot cannot see its caustic), and so does a pilot whose paths found
+// caustic light fewer than 20 times (too few to measure the share).
+TEST(AutoPolicy, MeasuredCausticShareOverrulesTheStaticCausticRule) {
+    SceneFeatures f = features_of(glass_caustic());
+    ASSERT_EQ(choice_of(f).rule, "caustics_bdpt");  // without a pilot
+    f.pilot_measured = true;
+    f.pilot.total_mean = 1.0;
+    f.pilot.mean = {0.0, 0.8, 0.19, 0.01};
+    f.pilot.variance = {0.0, 0.6, 0.34, 0.06};
+    f.pilot.caustic_path_count = 19;  // too few caustic paths to measure the share: the static rule
+    EXPECT_EQ(choice_of(f).rule, "caustics_bdpt");
+    f.pilot.caustic_path_count = 20;
+    AutoChoice c = choice_of(f);
+    EXPECT_EQ(c.integrator, "PATH");
+    EXPECT_EQ(c.rule, "default");
+    EXPECT_NE(c.reason.find("only 6 % of the variance is caustic"), std::string::npos) << c.reason;
+    f.pilot.variance = {0.0, 0.6, 0.28, 0.12};
+    EXPECT_EQ(choice_of(f).rule, "caustics_bdpt");
+    // A soft point light (radius 0.15): not delta, the measured share decides.
+    SceneFeatures soft = features_of(lit_room(2, true));
+    ASSERT_TRUE(soft.caustic_paths);
+    EXPECT_EQ(soft.delta_power, 0.0);
+    soft.pilot_measured = true;
+    soft.pilot.total_mean = 1.0;
+    soft.pilot.mean = {0.0, 0.7, 0.3, 0.0};
+    soft.pilot.variance = {0.0, 0.7, 0.3, 0.0};
+    soft.pilot.caustic_path_count = 1000;
+    EXPECT_EQ(choice_of(soft).integrator, "PATH");
+    // The delta point light of lit_room(1): its power is delta, the static rule stays.
+    SceneFeatures point = features_of(lit_room(1, true));
+    EXPECT_GT(point.delta_power_share(), 0.99);
+    point.pilot_measured = true;
+    point.pilot = soft.pilot;
+    EXPECT_EQ(choice_of(point).rule, "caustics_bdpt");
+}
+
 // Rule indirect_irradiance_cache: a diffuse scene whose pilot finds at least 30 % of the lit energy (direct +
 // indirect + caustic) indirect goes to the irradiance cache; below that share, or with more than 5 % of the area
 // glossy, specular or transmissive, PATH; the emitted class does not count (the Cornell box's visible panel).
