@@ -64,12 +64,15 @@ AUTO_CONFIGS = ("Cycles", "Candela PATH SOBOL", "Candela AUTO", "Candela BDPT", 
 AUTO_CONFIG_SCENES = {"Candela MMLT": ("door",)}
 
 
-def held_out_scenes():
-    """examples/scenes.py's HELD_OUT, read without importing it (it needs Blender's bpy)."""
+def held_out_scenes(name=None):
+    """examples/scenes.py's HELD_OUT (or the list `name`; default HELD_OUT + HELD_OUT_2, the second held-out set),
+    read without importing it (it needs Blender's bpy)."""
     import ast
+    if name is None:
+        return held_out_scenes("HELD_OUT") + held_out_scenes("HELD_OUT_2")
     tree = ast.parse((ROOT / "examples" / "scenes.py").read_text())
     for node in tree.body:
-        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "HELD_OUT" for t in node.targets):
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == name for t in node.targets):
             return list(ast.literal_eval(node.value))
     return []
 
@@ -620,7 +623,7 @@ def auto_table(scene_names, configs, results):
     rows = auto_rows(scene_names, configs, results)
     if not rows:
         return []
-    held = set(held_out_scenes())
+    held, held_2 = set(held_out_scenes("HELD_OUT")), set(held_out_scenes("HELD_OUT_2"))
     head = ["| scene | AUTO's choice | AUTO rel. RMSE | each integrator's rel. RMSE at AUTO's time | ratio to best "
             f"(which) | ≤ {AUTO_TARGETS[0]}× best | ratio to PATH | ≤ {AUTO_TARGETS[1]}× PATH | ratio to Cycles "
             "| analysis share |", "|---|---|---|---|---|---|---|---|---|---|"]
@@ -643,9 +646,11 @@ def auto_table(scene_names, configs, results):
           f"**FAIL** beyond. The best single integrator is the minimum of noisy estimates, so the ratio to it is "
           "biased slightly high where two integrators are close.", ""]
     for title, names in (("Accuracy scenes (the policy's rules were written and tuned on these)",
-                          [r for r in rows if r[0] not in held]),
-                         ("Held-out scenes (examples/scenes.py HELD_OUT: not used for tuning)",
-                          [r for r in rows if r[0] in held])):
+                          [r for r in rows if r[0] not in held | held_2]),
+                         ("Held-out scenes (examples/scenes.py HELD_OUT: used to tune the caustic rule since)",
+                          [r for r in rows if r[0] in held]),
+                         ("Second held-out set (examples/scenes.py HELD_OUT_2: not used for tuning)",
+                          [r for r in rows if r[0] in held_2])):
         if not names:
             continue
         md += [f"### {title}", "", *head, *(r[1] for r in names), ""]
