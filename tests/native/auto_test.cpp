@@ -231,14 +231,19 @@ void expect_auto_is(SceneArrays arrays, const char* expected) {
     const std::string method = counters.method.get();
     EXPECT_EQ(method.rfind(std::string("Auto: ") + expected + " \xe2\x80\x94 ", 0), 0u) << method;
     const std::vector<std::string> lines = log.take();
-    bool features = false, decision = false, pilot = false;
+    bool features = false, decision = false, pilot = false, tree = false;
+    // The light tree (the pilot's and PATH's) is PATH's cost when PATH with the tree is chosen, the analysis's else.
+    const std::string tree_note =
+        std::string(expected) == "PATH" ? "PATH's own, not counted" : "counted in the analysis";
     for (const std::string& l : lines) {
         std::printf("%s\n", l.c_str());  // what the user's log shows (docs/auto.md quotes it)
         features |= l.rfind("Auto: scene features:", 0) == 0;
         decision |= l.rfind(std::string("Auto: chose ") + expected, 0) == 0;
         pilot |= l.rfind("Auto: pilot ", 0) == 0;
+        tree |= l.rfind("Auto: chose ", 0) == 0 && l.find("; light tree ") != std::string::npos &&
+                l.find(tree_note) != std::string::npos;
     }
-    EXPECT_TRUE(features && decision && pilot) << expected;
+    EXPECT_TRUE(features && decision && pilot && tree) << expected;
     EXPECT_EQ(counters.work_total.load(), 4);
 }
 
