@@ -203,6 +203,30 @@ TEST(AutoPolicy, IndirectDiffuseLightGoesToTheIrradianceCache) {
     EXPECT_EQ(choose_integrator(f, [](const std::string& n) { return n != "IRRADIANCE_CACHE"; }).integrator, "PATH");
 }
 
+// One frame of an animation: no integrator whose image flickers from frame to frame (caches placed anew each frame,
+// Metropolis samplers); the reason names the rule passed over. Stills are unchanged.
+TEST(AutoPolicy, AnimationChoosesNoCacheOrMetropolisThatFlickers) {
+    SceneFeatures f = features_of(cornell_box());
+    f.pilot_measured = true;
+    f.pilot.total_mean = 1.0;
+    f.pilot.mean = {0.0, 0.5, 0.5, 0.0};  // indirect-heavy diffuse: the irradiance cache for a still
+    ASSERT_EQ(choice_of(f).integrator, "IRRADIANCE_CACHE");
+    f.animation = true;
+    const AutoChoice c = choice_of(f);
+    EXPECT_EQ(c.integrator, "PATH");
+    EXPECT_EQ(c.rule, "default");
+    EXPECT_NE(c.reason.find("animation: not IRRADIANCE_CACHE (rule indirect_irradiance_cache)"), std::string::npos)
+        << c.reason;
+    // SPPM (the caustic rule without BDPT in the build) is ruled out too; BDPT is not.
+    SceneFeatures g = features_of(glass_caustic());
+    g.animation = true;
+    EXPECT_EQ(choice_of(g).integrator, "BDPT");
+    EXPECT_EQ(choose_integrator(g, [](const std::string& n) { return n != "BDPT"; }).integrator, "PATH");
+    for (const char* name : {"MLT", "MMLT", "IRRADIANCE_CACHE", "PHOTON", "SPPM"})
+        EXPECT_TRUE(flickers_in_animation(name));
+    for (const char* name : {"PATH", "BDPT", "LIGHT"}) EXPECT_FALSE(flickers_in_animation(name));
+}
+
 // AUTO renders the chosen integrator's image, bit for bit, and says what it chose in the log and the status.
 void expect_auto_is(SceneArrays arrays, const char* expected) {
     Params base = basic_params(16, 12, 4, 3);
@@ -245,6 +269,26 @@ void expect_auto_is(SceneArrays arrays, const char* expected) {
     }
     EXPECT_TRUE(features && decision && pilot && tree) << expected;
     EXPECT_EQ(counters.work_total.load(), 4);
+}
+
+// The "animation" param (the add-on sends it to AUTO for a frame of an animation) reaches the policy: the Cornell box,
+// a still's IRRADIANCE_CACHE, renders with PATH and the status says why.
+TEST(AutoIntegrator, AnimationParamRulesOutTheCache) {
+    const PreparedScene scene(cornell_box(), basic_params(16, 12, 4, 3));
+    Params p = basic_params(16, 12, 4, 3);
+    p.set("integrator", std::string("AUTO"));
+    p.set("animation", true);
+    Film film(16, 12, 0, 0, 32);
+    const std::unique_ptr<Integrator> integrator = make_integrator(p);
+    CancelToken cancel;
+    RenderCounters counters;
+    MessageLog log;
+    RenderContext ctx{cancel, counters, 2, nullptr, &log};
+    integrator->render(scene.scene(), film, ctx);
+    const std::string method = counters.method.get();
+    EXPECT_EQ(method.rfind("Auto: PATH \xe2\x80\x94 ", 0), 0u) << method;
+    EXPECT_NE(method.find("animation: not IRRADIANCE_CACHE"), std::string::npos) << method;
+    for (const std::string& key : p.unused_keys()) EXPECT_NE(key, "animation");  // read: no unused-setting warning
 }
 
 TEST(AutoIntegrator, RendersTheChosenIntegratorsImageBitForBit) {

@@ -25,7 +25,8 @@ public:
         : m_params(params),
           // Built from the caller's params so their common keys count as read (Session reports unread ones), and
           // for the budget before the scene exists: PATH's, in samples; render() replaces it by the choice's.
-          m_probe(find_integrator("PATH").create(params)) {}
+          m_probe(find_integrator("PATH").create(params)),
+          m_animation(params.get<bool>("animation", false)) {}
 
     void render(const Scene& scene, Film& film, RenderContext& ctx) override {
         ctx.counters.stage.begin("Analysing scene", 0);
@@ -45,6 +46,7 @@ public:
                                          path.pixel.samples, path.max_bounces, path.pixel.seed, ctx.threads),
                       &ctx.cancel);
         features.pilot_measured = true;
+        features.animation = m_animation;
         const AutoChoice choice = choose_integrator(features, &in_registry);
         const bool tree_shared =
             choice.integrator == "PATH" && parse_light_selection(path.light_selection) == LightSelection::Tree;
@@ -76,6 +78,7 @@ public:
 private:
     Params m_params;
     std::unique_ptr<Integrator> m_probe;
+    bool m_animation;  // one frame of an animation (the add-on sends it): no integrator that flickers
 };
 
 }  // namespace

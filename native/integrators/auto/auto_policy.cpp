@@ -120,9 +120,26 @@ const std::vector<AutoRule>& auto_rules() {
     return rules;
 }
 
+bool flickers_in_animation(const std::string& integrator) {
+    for (const char* name : {"MLT", "MMLT", "IRRADIANCE_CACHE", "PHOTON", "SPPM"})
+        if (integrator == name) return true;
+    return false;
+}
+
 AutoChoice choose_integrator(const SceneFeatures& f, const std::function<bool(const std::string&)>& available) {
-    for (const AutoRule& r : auto_rules())
-        if (r.applies(f) && available(r.integrator)) return {r.integrator, r.name, r.reason(f)};
+    const AutoRule* skipped = nullptr;  // the first rule animation ruled out
+    for (const AutoRule& r : auto_rules()) {
+        if (!r.applies(f) || !available(r.integrator)) continue;
+        if (f.animation && flickers_in_animation(r.integrator)) {
+            if (skipped == nullptr) skipped = &r;
+            continue;
+        }
+        AutoChoice choice{r.integrator, r.name, r.reason(f)};
+        if (skipped != nullptr)
+            choice.reason += std::string("; animation: not ") + skipped->integrator + " (rule " + skipped->name +
+                             "), whose image would flicker from frame to frame";
+        return choice;
+    }
     throw InvalidParameter("AUTO: no rule of the policy chose an available integrator");  // PATH always exists
 }
 

@@ -59,6 +59,9 @@ struct SceneFeatures {
     /// The pilot render's measurements (pilot.h), when AUTO ran one (analyse_scene does not).
     bool pilot_measured = false;
     PilotResult pilot;
+    /// The render is one frame of an animation (the add-on's "animation" param to AUTO: Blender's is_animation): the
+    /// policy skips integrators whose image would flicker from frame to frame (auto_policy.cpp).
+    bool animation = false;
 
     double unhittable_power_share() const { return total_power > 0.0 ? unhittable_power / total_power : 0.0; }
     double small_power_share() const { return total_power > 0.0 ? small_power / total_power : 0.0; }
