@@ -119,7 +119,8 @@ TEST(AutoPolicy, PilotSharesDecideWhereTheyCan) {
     EXPECT_EQ(c.integrator, "BDPT");
     EXPECT_EQ(c.rule, "measured_caustics_bdpt");
     EXPECT_EQ(c.reason.rfind("62 % of the variance is caustic", 0), 0u) << c.reason;
-    f.pilot.variance = {0.05, 0.5, 0.3, 0.15};  // caustic, but not dominant: the static rule
+    f.pilot.caustic_path_count = 1000;
+    f.pilot.variance = {0.05, 0.5, 0.3, 0.15};  // caustic (≥ 10 %), but not dominant: the static rule
     EXPECT_EQ(choice_of(f).rule, "caustics_bdpt");
     // From a point light the pilot (a path tracer) cannot see a caustic: a zero measured share leaves the static rule.
     SceneFeatures point = features_of(lit_room(1, true));
