@@ -13,7 +13,7 @@ DEB_PACKAGES := blender cmake g++ make libembree-dev pybind11-dev libopenexr-dev
 
 FORMAT_FILES = $(shell find native tests bench -name '*.cpp' -o -name '*.h')
 
-.PHONY: accuracy-photon-mapping format all deps build demo test bench microbench skip-bench accuracy accuracy-metropolis accuracy-auto accuracy-auto-2 povray-compare parity door-gap env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
+.PHONY: accuracy-photon-mapping format all deps build demo test bench microbench skip-bench accuracy accuracy-metropolis accuracy-auto povray-compare parity door-gap env-variance sampling-docs bdpt-strategies fuzz test-sanitize robustness-report install-addon clean test-native test-blender viewport-latency test-gui
 
 all: build
 
@@ -78,11 +78,6 @@ accuracy-photon-mapping: build
 accuracy-auto: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD) --auto --size 64 --max-samples 128 --ref-factor 4
 
-# The second held-out set with the scenes the caustic rule and the analysis's cost were changed for (docs/auto.md,
-# "Acceptance"), as make accuracy-auto measures them, into docs/accuracy_auto_2.md (about 3 minutes on a quiet machine).
-accuracy-auto-2: build
-	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD) --auto --size 64 --max-samples 128 --ref-factor 4 \
-		--scenes veach_mis,caustic,outdoor,mirror_interior,glossy_atrium,window_glass,table_caustic --report accuracy_auto_2
 
 # Candela's irradiance cache beside POV-Ray 3.7's radiosity on the Cornell box: the time each needs to reach 2 %
 # against its own converged image, docs/povray.md (about 25 minutes, most of it POV-Ray's reference).
