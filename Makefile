@@ -78,6 +78,7 @@ accuracy-photon-mapping: build
 accuracy-auto: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD) --auto --size 64 --max-samples 128 --ref-factor 4
 
+
 # Candela's irradiance cache beside POV-Ray 3.7's radiosity on the Cornell box: the time each needs to reach 2 %
 # against its own converged image, docs/povray.md (about 25 minutes, most of it POV-Ray's reference).
 povray-compare: build

@@ -64,12 +64,15 @@ AUTO_CONFIGS = ("Cycles", "Candela PATH SOBOL", "Candela AUTO", "Candela BDPT", 
 AUTO_CONFIG_SCENES = {"Candela MMLT": ("door",)}
 
 
-def held_out_scenes():
-    """examples/scenes.py's HELD_OUT, read without importing it (it needs Blender's bpy)."""
+def held_out_scenes(name=None):
+    """examples/scenes.py's HELD_OUT (or the list `name`; default HELD_OUT + HELD_OUT_2, the second held-out set),
+    read without importing it (it needs Blender's bpy)."""
     import ast
+    if name is None:
+        return held_out_scenes("HELD_OUT") + held_out_scenes("HELD_OUT_2")
     tree = ast.parse((ROOT / "examples" / "scenes.py").read_text())
     for node in tree.body:
-        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "HELD_OUT" for t in node.targets):
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == name for t in node.targets):
             return list(ast.literal_eval(node.value))
     return []
 
@@ -96,12 +99,14 @@ def parse_args():
     ap.add_argument("--rerun", default="", help="with --reuse: comma-separated scenes to render afresh")
     ap.add_argument("--auto", action="store_true",
                     help="AUTO's acceptance: accuracy + held-out scenes, AUTO_CONFIGS, DOCS/accuracy_auto.md")
+    ap.add_argument("--report", default=None,
+                    help="the report's name: DOCS/REPORT.md and DOCS/REPORT/ (default accuracy or accuracy_auto)")
     a = ap.parse_args()
     if a.quick:
         a.size, a.max_samples, a.ref_factor = 32, 8, 8
         a.scenes = a.scenes or "cornell_box,soft_shadow"
     a.out = Path(a.out or Path(a.build) / ("accuracy-quick" if a.quick else "accuracy-auto" if a.auto else "accuracy"))
-    a.report = "accuracy_auto" if a.auto else "accuracy"
+    a.report = a.report or ("accuracy_auto" if a.auto else "accuracy")
     a.rerun = [x for x in a.rerun.split(",") if x]
     a.reference_integrator = dict(kv.split("=", 1) for kv in a.reference_integrator.split(",") if kv)
     return a
@@ -620,7 +625,7 @@ def auto_table(scene_names, configs, results):
     rows = auto_rows(scene_names, configs, results)
     if not rows:
         return []
-    held = set(held_out_scenes())
+    held, held_2 = set(held_out_scenes("HELD_OUT")), set(held_out_scenes("HELD_OUT_2"))
     head = ["| scene | AUTO's choice | AUTO rel. RMSE | each integrator's rel. RMSE at AUTO's time | ratio to best "
             f"(which) | ≤ {AUTO_TARGETS[0]}× best | ratio to PATH | ≤ {AUTO_TARGETS[1]}× PATH | ratio to Cycles "
             "| analysis share |", "|---|---|---|---|---|---|---|---|---|---|"]
@@ -643,9 +648,11 @@ def auto_table(scene_names, configs, results):
           f"**FAIL** beyond. The best single integrator is the minimum of noisy estimates, so the ratio to it is "
           "biased slightly high where two integrators are close.", ""]
     for title, names in (("Accuracy scenes (the policy's rules were written and tuned on these)",
-                          [r for r in rows if r[0] not in held]),
-                         ("Held-out scenes (examples/scenes.py HELD_OUT: not used for tuning)",
-                          [r for r in rows if r[0] in held])):
+                          [r for r in rows if r[0] not in held | held_2]),
+                         ("Held-out scenes (examples/scenes.py HELD_OUT: used to tune the caustic rule since)",
+                          [r for r in rows if r[0] in held]),
+                         ("Second held-out set (examples/scenes.py HELD_OUT_2: not used for tuning)",
+                          [r for r in rows if r[0] in held_2])):
         if not names:
             continue
         md += [f"### {title}", "", *head, *(r[1] for r in names), ""]

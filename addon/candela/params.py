@@ -191,6 +191,14 @@ def dof_params(camera_data, camera_object=None):
     }
 
 
+def animation_params(settings, is_animation):
+    """AUTO's "animation" param (docs/auto.md, "Animation"): true for a frame of an animation render (Blender's
+    RenderEngine.is_animation), so AUTO chooses no integrator whose image flickers from frame to frame. Not the
+    scene's frame range: Blender's default scene spans frames 1-250, and a still of it is a still. Only AUTO reads
+    it (another integrator would report it as an unused setting)."""
+    return {"animation": True} if settings.integrator == "AUTO" and is_animation else {}
+
+
 def to_native_params(scene, camera_data, argv=None, camera_object=None, view_layer=None):
     """The params dict for `_native.Session` (argv: for tests; default sys.argv). `camera_object` (the evaluated
     camera) resolves a depth-of-field focus object; `view_layer` gives the render passes to write."""

@@ -10,7 +10,7 @@ from . import native
 from .export import ExportError, Warnings, export_scene, name_objects, render_camera
 from .export.camera import camera_to_world
 from .export.motion import motion_arrays
-from .params import result_size, to_native_params
+from .params import animation_params, result_size, to_native_params
 from .unsupported import ignored_settings
 
 POLL_S = 0.05                # wait() timeout: test_break() polled at 20 Hz + native cancel (< 10 ms) keeps Esc under 100 ms
@@ -316,6 +316,7 @@ def render_frame(engine, depsgraph, background=False):
         return None
     camera_eval = camera.original.evaluated_get(depsgraph)
     params = to_native_params(scene, camera_eval.data, camera_object=camera_eval, view_layer=depsgraph.view_layer)
+    params.update(animation_params(scene.candela, bool(getattr(engine, "is_animation", False)) and not preview))
     if preview:
         params.update(PREVIEW_PARAMS)
         params.pop("passes", None)

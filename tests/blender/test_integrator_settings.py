@@ -80,6 +80,16 @@ def test_auto_is_in_the_integrator_menu_with_its_stable_number_and_only_common_k
     assert sent["integrator"] == "AUTO"
 
 
+def test_auto_is_told_of_an_animation_render_and_no_other_integrator_is():
+    _, params, _, _, _ = _modules()
+    scene = tiny_scene(width=8, height=6, samples=1)
+    scene.candela.integrator = "AUTO"
+    assert params.animation_params(scene.candela, True) == {"animation": True}
+    assert params.animation_params(scene.candela, False) == {}   # a still, whatever the scene's frame range
+    scene.candela.integrator = "PATH"
+    assert params.animation_params(scene.candela, True) == {}
+
+
 def test_only_the_chosen_integrators_keys_are_sent():
     _, params, _, schema, _ = _modules()
     scene = tiny_scene(width=8, height=6, samples=1)

@@ -28,7 +28,13 @@ struct AutoChoice {
     std::string reason;
 };
 
-/// The first rule that applies to `f` and whose integrator `available(name)` says exists.
+/// Integrators whose image flickers in an animation beyond its pixel noise: caches whose records or photons are
+/// placed anew each frame (IRRADIANCE_CACHE, PHOTON, SPPM: low-frequency blotches that move) and Metropolis samplers
+/// (MLT, MMLT: start-up bias and correlated, unevenly converged noise that changes from frame to frame).
+bool flickers_in_animation(const std::string& integrator);
+
+/// The first rule that applies to `f` and whose integrator `available(name)` says exists; in an animation
+/// (f.animation) not one that flickers_in_animation, and the reason then names the rule it passed over.
 AutoChoice choose_integrator(const SceneFeatures& f, const std::function<bool(const std::string&)>& available);
 
 }  // namespace candela

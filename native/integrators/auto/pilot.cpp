@@ -22,6 +22,7 @@ using pilot::Uniform;
 struct PixelSums {
     double s[k_path_classes] = {}, s2[k_path_classes] = {};
     double total = 0.0, total2 = 0.0, through = 0.0, sad = 0.0;
+    uint64_t caustic_paths = 0;
 };
 
 double sample_variance(double s, double s2, int n) { return n > 1 ? std::max(0.0, (s2 - s * s / n) / (n - 1)) : 0.0; }
@@ -65,12 +66,14 @@ std::string PilotResult::summary() const {
     std::snprintf(buf, sizeof buf,
                   "Auto: pilot %d px x %d paths (%.1f ms): energy emitted %.0f %%, direct %.0f %%, indirect %.0f %%, "
                   "caustic %.0f %%; variance emitted %.0f %%, direct %.0f %%, indirect %.0f %%, caustic %.0f %%; "
-                  "through transmissive %.0f %%; fireflies %.0f %% of the variance in 1 %% of the pixels",
+                  "through transmissive %.0f %%; fireflies %.0f %% of the variance in 1 %% of the pixels; %llu "
+                  "paths with caustic light",
                   pixels, samples, milliseconds, pct(energy_share(PathClass::Emitted)),
                   pct(energy_share(PathClass::Direct)), pct(energy_share(PathClass::Indirect)),
                   pct(energy_share(PathClass::Caustic)), pct(variance_share(PathClass::Emitted)),
                   pct(variance_share(PathClass::Direct)), pct(variance_share(PathClass::Indirect)),
-                  pct(variance_share(PathClass::Caustic)), pct(through_transmissive_share()), pct(firefly_share));
+                  pct(variance_share(PathClass::Caustic)), pct(through_transmissive_share()), pct(firefly_share),
+                  static_cast<unsigned long long>(caustic_path_count));
     return buf;
 }
 
@@ -107,6 +110,7 @@ PilotResult run_pilot(const Scene& scene, const PilotSettings& s, const CancelTo
                         acc.s2[c] += l * l;
                         total += l;
                     }
+                    if (luminance(t.c[int(PathClass::Caustic)]) > 0.f) ++acc.caustic_paths;
                     acc.total += total;
                     acc.total2 += total * total;
                     acc.through += luminance(t.through_transmissive);
@@ -136,6 +140,7 @@ PilotResult run_pilot(const Scene& scene, const PilotSettings& s, const CancelTo
         r.total_mean += p.total / n / P;
         r.through_transmissive_mean += p.through / n / P;
         r.specular_after_diffuse_mean += p.sad / n / P;
+        r.caustic_path_count += p.caustic_paths;
     }
     r.standard_error = std::sqrt(var_of_mean);
     for (int c = 0; c < k_path_classes; ++c) r.class_standard_error[c] = std::sqrt(class_var_of_mean[c]);

@@ -68,6 +68,9 @@ struct PilotResult {
     double specular_after_diffuse_mean = 0.0;
     /// The share of total_variance in the 1 % of pilot pixels (at least one) with the largest variance.
     double firefly_share = 0.0;
+    /// Pilot paths that carried any caustic light: with few, the caustic shares are not measured (a small light's
+    /// caustic the pilot's few paths missed), and the policy leaves the decision to the static features.
+    uint64_t caustic_path_count = 0;
 
     double energy_share(PathClass c) const { return total_mean > 0.0 ? mean[int(c)] / total_mean : 0.0; }
     /// The class's share of Σ_c variance[c] (the classes' variances, not the total's: their covariances left out).

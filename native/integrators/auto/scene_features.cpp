@@ -46,11 +46,17 @@ void analyse_lights(const Scene& scene, double small_area, SceneFeatures* f) {
                 if constexpr (std::is_same_v<T, PointLight>) {
                     ++f->unhittable_lights;
                     f->unhittable_power += power;
-                    if (x.radius <= 0.f) ++f->delta_lights;
+                    if (x.radius <= 0.f) {
+                        ++f->delta_lights;
+                        f->delta_power += power;
+                    }
                 } else if constexpr (std::is_same_v<T, SunLight>) {
                     ++f->unhittable_lights;
                     f->unhittable_power += power;
-                    if (x.tan_half_angle <= 0.f) ++f->delta_lights;
+                    if (x.tan_half_angle <= 0.f) {
+                        ++f->delta_lights;
+                        f->delta_power += power;
+                    }
                 } else if constexpr (std::is_same_v<T, AreaLight>) {
                     if (double(x.area) < small_area) {
                         ++f->small_emitters;

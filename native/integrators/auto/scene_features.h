@@ -34,6 +34,7 @@ struct SceneFeatures {
     double total_power = 0.0;           // Σ light_power over the LightSet (luminance-weighted W, as selection sees it)
     double unhittable_power = 0.0;      // the point/spot/sun share of it
     double small_power = 0.0;           // the small emitters' share of it
+    double delta_power = 0.0;           // the delta lights' (zero radius/angle) share of it
     WorldKind world = WorldKind::None;  // constant: a background colour (not a light); textured: a WorldLight
 
     // Surfaces: area of the triangles whose material can have each lobe (a material with several lobes counts in
@@ -58,9 +59,13 @@ struct SceneFeatures {
     /// The pilot render's measurements (pilot.h), when AUTO ran one (analyse_scene does not).
     bool pilot_measured = false;
     PilotResult pilot;
+    /// The render is one frame of an animation (the add-on's "animation" param to AUTO: Blender's is_animation): the
+    /// policy skips integrators whose image would flicker from frame to frame (auto_policy.cpp).
+    bool animation = false;
 
     double unhittable_power_share() const { return total_power > 0.0 ? unhittable_power / total_power : 0.0; }
     double small_power_share() const { return total_power > 0.0 ? small_power / total_power : 0.0; }
+    double delta_power_share() const { return total_power > 0.0 ? delta_power / total_power : 0.0; }
     double area_share(double a) const { return total_area > 0.0 ? a / total_area : 0.0; }
     /// One line for the log: every feature, names as the fields'.
     std::string summary() const;
