@@ -1,10 +1,12 @@
 #include "integrators/photon_map/photon_map.h"
 
+#include <immintrin.h>
 #include <nanoflann.hpp>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 
 #include "core/error.h"
 
@@ -17,9 +19,12 @@ struct CellCloud {
     const Photon* photons = nullptr;
     size_t count = 0;
     size_t kdtree_get_point_count() const { return count; }
+    /// Coordinate d of photon i, read at its offset (x, y, z lead the packed photon): no branch on d in
+    /// nanoflann's build loops.
     float kdtree_get_pt(size_t i, size_t d) const {
-        const Photon& p = photons[i];
-        return d == 0 ? p.x : d == 1 ? p.y : p.z;
+        float v;
+        std::memcpy(&v, reinterpret_cast<const unsigned char*>(photons + i) + sizeof(float) * d, sizeof v);
+        return v;
     }
     template <class BBox>
     bool kdtree_get_bbox(BBox&) const {
@@ -103,7 +108,22 @@ private:
     uint32_t m_base = 0;
 };
 
-float coordinate(const Photon& p, int axis) { return axis == 0 ? p.x : axis == 1 ? p.y : p.z; }
+/// Photon coordinate `Axis` (a template argument: the median split's comparisons do not branch on it).
+template <int Axis>
+float coordinate(const Photon& p) {
+    return Axis == 0 ? p.x : Axis == 1 ? p.y : p.z;
+}
+
+/// Reorders [begin, end) so that mid holds the photon of median coordinate on `axis`, smaller ones before it.
+void median_split(Photon* begin, Photon* mid, Photon* end, int axis) {
+    auto split = [&](auto less) { std::nth_element(begin, mid, end, less); };
+    if (axis == 0)
+        split([](const Photon& a, const Photon& b) { return coordinate<0>(a) < coordinate<0>(b); });
+    else if (axis == 1)
+        split([](const Photon& a, const Photon& b) { return coordinate<1>(a) < coordinate<1>(b); });
+    else
+        split([](const Photon& a, const Photon& b) { return coordinate<2>(a) < coordinate<2>(b); });
+}
 
 }  // namespace
 
@@ -166,17 +186,22 @@ PhotonMap& PhotonMap::operator=(PhotonMap&&) noexcept = default;
 
 namespace {
 
+/// The bounds of n photons: one unaligned 4-float load per photon (x, y, z and the flux bits, whose lane is
+/// dropped), min and max in SSE lanes.
 void bounds_of(const Photon* p, size_t n, float lo[3], float hi[3]) {
-    for (int a = 0; a < 3; ++a) {
-        lo[a] = k_inf;
-        hi[a] = -k_inf;
-    }
+    __m128 l = _mm_set1_ps(k_inf), h = _mm_set1_ps(-k_inf);
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(p);
     for (size_t i = 0; i < n; ++i) {
-        const float c[3] = {p[i].x, p[i].y, p[i].z};
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], c[a]);
-            hi[a] = std::max(hi[a], c[a]);
-        }
+        const __m128 c = _mm_loadu_ps(reinterpret_cast<const float*>(bytes + i * sizeof(Photon)));
+        l = _mm_min_ps(l, c);
+        h = _mm_max_ps(h, c);
+    }
+    alignas(16) float lv[4], hv[4];
+    _mm_store_ps(lv, l);
+    _mm_store_ps(hv, h);
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = lv[a];
+        hi[a] = hv[a];
     }
 }
 
@@ -226,9 +251,7 @@ void PhotonMap::build(std::vector<Photon> photons, int threads, StageProgress* s
                     if (nd.hi[a] - nd.lo[a] > nd.hi[axis] - nd.lo[axis]) axis = a;
                 const uint32_t mid = nd.begin + (nd.end - nd.begin) / 2;
                 Photon* base = m_photons.data();
-                std::nth_element(base + nd.begin, base + mid, base + nd.end, [axis](const Photon& a, const Photon& b) {
-                    return coordinate(a, axis) < coordinate(b, axis);
-                });
+                median_split(base + nd.begin, base + mid, base + nd.end, axis);
                 const int32_t l = int32_t(first_child + 2 * j), r = l + 1;
                 Forest::Node& left = forest->nodes[size_t(l)];
                 Forest::Node& right = forest->nodes[size_t(r)];
