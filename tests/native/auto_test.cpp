@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
+#include <variant>
 
 #include "film/film.h"
 #include "integrators/auto/auto_policy.h"
@@ -115,6 +117,7 @@ TEST(AutoPolicy, PilotSharesDecideWhereTheyCan) {
     f.pilot.total_mean = 1.0;
     f.pilot.mean = {0.1, 0.5, 0.2, 0.2};
     f.pilot.variance = {0.05, 0.2, 0.13, 0.62};
+    f.pilot.caustic_path_count = 20;
     AutoChoice c = choice_of(f);
     EXPECT_EQ(c.integrator, "BDPT");
     EXPECT_EQ(c.rule, "measured_caustics_bdpt");
@@ -130,6 +133,71 @@ TEST(AutoPolicy, PilotSharesDecideWhereTheyCan) {
     point.pilot.mean = {0.0, 0.7, 0.3, 0.0};
     point.pilot.variance = {0.0, 0.7, 0.3, 0.0};
     EXPECT_EQ(choice_of(point).rule, "caustics_bdpt");
+}
+
+// Rule 3a (measured_caustics_bdpt) trusts a dominant caustic share only from as many caustic paths as rule 3 needs
+// (20): the held-out table_caustic's pilot measured 66 % from one path. Below the count the static rule decides and
+// its reason says why; a scene without static caustic paths (a mirror under a large light) then stays with PATH.
+TEST(AutoPolicy, DominantCausticShareNeedsEnoughCausticPaths) {
+    SceneFeatures f = features_of(glass_caustic());
+    f.pilot_measured = true;
+    f.pilot.total_mean = 1.0;
+    f.pilot.mean = {0.0, 0.6, 0.3, 0.1};
+    f.pilot.variance = {0.0, 0.2, 0.14, 0.66};
+    for (uint64_t n : {uint64_t(1), uint64_t(19)}) {
+        f.pilot.caustic_path_count = n;
+        const AutoChoice c = choice_of(f);
+        EXPECT_EQ(c.rule, "caustics_bdpt") << n;
+        EXPECT_NE(c.reason.find("found caustic light " + std::to_string(n) + " times, too few to measure"),
+                  std::string::npos)
+            << c.reason;
+    }
+    f.pilot.caustic_path_count = 20;
+    EXPECT_EQ(choice_of(f).rule, "measured_caustics_bdpt");
+    SceneFeatures large = features_of(floor_and_mirror(true).arrays());  // no light: add the pilot's share by hand
+    large.specular_area = 4.0;
+    large.caustic_paths = false;
+    large.light_count = 1;
+    large.pilot_measured = true;
+    large.pilot = f.pilot;
+    large.pilot.caustic_path_count = 1;
+    large.pilot.mean = {0.0, 0.8, 0.1, 0.1};  // indirect 10 %: neither indirect rule
+    EXPECT_EQ(choice_of(large).rule, "specular_large_lights");
+    large.pilot.caustic_path_count = 20;
+    EXPECT_EQ(choice_of(large).rule, "measured_caustics_bdpt");
+}
+
+// The settings table on the built feature scenes: PATH's light selection from the light-set entries (one: POWER;
+// more, an emissive mesh counting one per triangle: TREE); BDPT and IRRADIANCE_CACHE have no entry.
+TEST(AutoPolicy, SettingsChosenFromTheFeatures) {
+    struct Case {
+        const char* scene;
+        SceneArrays arrays;
+        const char* integrator;
+        const char* light_selection;  // nullptr: no setting
+    };
+    std::vector<float> veach_camera;
+    std::vector<Case> cases;
+    cases.push_back({"lit_room point", lit_room(1, false), "PATH", "POWER"});
+    cases.push_back({"lit_room every light", lit_room(511, false), "PATH", "TREE"});
+    cases.push_back({"cornell_box", cornell_box(), "PATH", "TREE"});
+    cases.push_back({"veach_mis", veach_scene(&veach_camera), "PATH", "TREE"});
+    cases.push_back({"glass_caustic", glass_caustic(), "BDPT", nullptr});
+    for (Case& c : cases) {
+        const SceneFeatures f = features_of(c.arrays);
+        const AutoChoice choice = choice_of(f);
+        ASSERT_EQ(choice.integrator, c.integrator) << c.scene;
+        if (c.light_selection == nullptr) {
+            EXPECT_TRUE(choice.settings.empty()) << c.scene;
+            continue;
+        }
+        ASSERT_EQ(choice.settings.size(), 1u) << c.scene;
+        const AutoSetting& s = choice.settings[0];
+        EXPECT_EQ(s.key, "light_selection");
+        EXPECT_EQ(std::get<std::string>(s.value), c.light_selection) << c.scene << ": " << s.describe();
+        EXPECT_EQ(s.describe().rfind(std::string("light_selection ") + c.light_selection + " (", 0), 0u);
+        EXPECT_EQ(std::string(c.light_selection) == "POWER", f.light_count <= 1) << c.scene << f.light_count;
+    }
 }
 
 // Rule caustics_bdpt with a pilot: the caustic must show in the measured variance (≥ 10 %), else PATH and the reason
@@ -290,6 +358,50 @@ TEST(AutoIntegrator, AnimationParamRulesOutTheCache) {
     EXPECT_EQ(method.rfind("Auto: PATH \xe2\x80\x94 ", 0), 0u) << method;
     EXPECT_NE(method.find("animation: not IRRADIANCE_CACHE"), std::string::npos) << method;
     for (const std::string& key : p.unused_keys()) EXPECT_NE(key, "animation");  // read: no unused-setting warning
+}
+
+// A one-light scene AUTO renders with PATH: the settings table picks POWER light selection, the log and the status
+// line say so, and the image is PATH's default (TREE) image bit for bit: with one light both pick it with
+// probability 1 (the claim the setting's reason rests on).
+TEST(AutoIntegrator, OneLightPathUsesPowerSelectionAndTheSameImage) {
+    Params base = basic_params(16, 12, 4, 3);
+    base.set("threads", int64_t(2));
+    const PreparedScene scene(lit_room(1, false), base);
+    Params autop, tree, power;
+    autop.set("integrator", std::string("AUTO"));
+    tree.set("integrator", std::string("PATH"));
+    power.set("integrator", std::string("PATH"));
+    power.set("light_selection", std::string("POWER"));
+    const RenderResult a = scene.render(autop), t = scene.render(tree), w = scene.render(power);
+    ASSERT_EQ(a.rgba.size(), t.rgba.size());
+    size_t differ_tree = 0, differ_power = 0;
+    for (size_t i = 0; i < a.rgba.size(); ++i) {
+        differ_tree += a.rgba[i] != t.rgba[i];
+        differ_power += a.rgba[i] != w.rgba[i];
+    }
+    EXPECT_EQ(differ_power, 0u);
+    EXPECT_EQ(differ_tree, 0u);
+
+    Params p = base;
+    p.set("integrator", std::string("AUTO"));
+    Film film(16, 12, 0, 0, 32);
+    const std::unique_ptr<Integrator> integrator = make_integrator(p);
+    CancelToken cancel;
+    RenderCounters counters;
+    MessageLog log;
+    RenderContext ctx{cancel, counters, 2, nullptr, &log};
+    integrator->render(scene.scene(), film, ctx);
+    const std::string method = counters.method.get();
+    EXPECT_EQ(method.rfind("Auto: PATH \xe2\x80\x94 ", 0), 0u) << method;
+    EXPECT_NE(method.find("; settings: light_selection POWER (one light"), std::string::npos) << method;
+    bool logged = false, counted = false;
+    for (const std::string& l : log.take()) {
+        std::printf("%s\n", l.c_str());
+        logged |= l.rfind("Auto: PATH settings: light_selection POWER (one light", 0) == 0;
+        counted |= l.rfind("Auto: chose PATH", 0) == 0 && l.find("counted in the analysis") != std::string::npos;
+    }
+    EXPECT_TRUE(logged);
+    EXPECT_TRUE(counted);  // PATH without the tree: the pilot's tree is the analysis's cost
 }
 
 TEST(AutoIntegrator, RendersTheChosenIntegratorsImageBitForBit) {
