@@ -35,7 +35,6 @@ import json
 import math
 import os
 import platform
-import re
 import subprocess
 import sys
 import time
@@ -194,21 +193,8 @@ def features_line(scene):
 
 
 def default_reference_integrator(scene):
-    """The Candela integrator whose reference can sample every path class the scene has (docs/auto.md,
-    "Acceptance"): PATH, unless the native scene analysis finds a caustic path (L S+ D) and a light no ray can hit
-    (point, spot, sun: `unhittable`) and no object hidden from some ray type. PATH cannot build light → delta
-    surface(s) → diffuse paths from such a light (its image lacks the caustic altogether); BDPT's light subpaths
-    carry them, and BDPT is unbiased for every path PATH samples. A reference that lacks a path class makes every
-    integrator that renders it look wrong (window_glass: the sun's caustic under a glass sphere)."""
-    line = features_line(scene)
-    m = re.search(r"unhittable (\d+),", line)
-    unhittable = int(m.group(1)) if m else 0
-    caustic = "caustic paths yes" in line
-    hidden = re.search(r"hidden ray types 0x([0-9a-f]+)", line)
-    if caustic and unhittable > 0 and (hidden is None or int(hidden.group(1), 16) == 0):
-        return "BDPT", (f"{unhittable} light(s) no ray can hit and caustic paths (L S+ D): PATH cannot sample "
-                        "their caustics")
-    return None, "PATH samples every path class the analysis finds"
+    """The Candela integrator for the scene's reference, from AUTO's scene analysis (stats.reference_integrator_for)."""
+    return stats.reference_integrator_for(features_line(scene))
 
 
 def reference(scene, engine, ref_samples):

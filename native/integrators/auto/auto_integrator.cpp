@@ -52,9 +52,13 @@ public:
         Params chosen_params = m_params;
         std::string settings;
         for (const AutoSetting& s : choice.settings) {
-            if (m_params.has(s.key)) continue;
+            settings += settings.empty() ? "" : "; ";
+            if (m_params.has(s.key)) {  // the caller's (a scene dump of another integrator's params, a script)
+                settings += s.key + " as set, not " + s.describe();
+                continue;
+            }
             chosen_params.set(s.key, s.value);
-            settings += (settings.empty() ? "" : "; ") + s.describe();
+            settings += s.describe();
         }
         const bool tree_shared =
             choice.integrator == "PATH" &&
