@@ -402,6 +402,16 @@ TEST(AutoIntegrator, OneLightPathUsesPowerSelectionAndTheSameImage) {
     }
     EXPECT_TRUE(logged);
     EXPECT_TRUE(counted);  // PATH without the tree: the pilot's tree is the analysis's cost
+
+    // A light selection the caller set is kept, and the status says what AUTO would have chosen.
+    p.set("light_selection", std::string("UNIFORM"));
+    Film film2(16, 12, 0, 0, 32);
+    RenderCounters counters2;
+    RenderContext ctx2{cancel, counters2, 2, nullptr, &log};
+    make_integrator(p)->render(scene.scene(), film2, ctx2);
+    EXPECT_NE(counters2.method.get().find("light_selection as set, not light_selection POWER"), std::string::npos)
+        << counters2.method.get();
+    (void)log.take();
 }
 
 TEST(AutoIntegrator, RendersTheChosenIntegratorsImageBitForBit) {
