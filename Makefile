@@ -74,7 +74,9 @@ accuracy-photon-mapping: build
 
 # AUTO's acceptance (issue 19): AUTO at equal time against the best single integrator and PATH on the accuracy scenes
 # and the held-out ones; docs/accuracy_auto.md with a pass/fail per scene (docs/auto.md, "Acceptance"). Settings of
-# the committed run: 64 px, up to 128 samples, references of 512 (about 40 minutes on the shared 2-core machine).
+# the committed run: 64 px, up to 128 samples, references of 512 (3-5 minutes on the 2-core machine at load 2-5 on
+# 2026-12-03; about 40 under heavy load). Candela references by PATH, or BDPT where the scene analysis finds caustics
+# from a light no ray hits (docs/auto.md, "Third run"; --path-reference for PATH everywhere).
 accuracy-auto: build
 	$(CLEAN_ENV) $(PYTHON) bench/accuracy.py --build $(BUILD) --auto --size 64 --max-samples 128 --ref-factor 4
 

@@ -94,6 +94,9 @@ def parse_args():
                     help="SCENE=INTEGRATOR,…: the Candela integrator rendering a scene's reference (default PATH); "
                          "an unbiased one with less noise per second there (BDPT on the door scenes) makes the "
                          "reference's own noise a smaller part of every error")
+    ap.add_argument("--path-reference", action="store_true",
+                    help="every Candela reference by PATH (but --reference-integrator's), not the integrator the "
+                         "scene analysis calls for (default: BDPT where a light no ray hits has caustic paths)")
     ap.add_argument("--reuse", action="store_true",
                     help="read back the sequences an earlier run with the same arguments and build saved in OUT")
     ap.add_argument("--rerun", default="", help="with --reuse: comma-separated scenes to render afresh")
@@ -109,6 +112,7 @@ def parse_args():
     a.report = a.report or ("accuracy_auto" if a.auto else "accuracy")
     a.rerun = [x for x in a.rerun.split(",") if x]
     a.reference_integrator = dict(kv.split("=", 1) for kv in a.reference_integrator.split(",") if kv)
+    a.default_reference = not a.path_reference
     return a
 
 
@@ -171,10 +175,40 @@ def build_fingerprint():
     return h.hexdigest()[:16]
 
 
+REFERENCE_WHY = {}  # scene → why its Candela reference is rendered by the integrator it is (report, log)
+
+
+def features_line(scene):
+    """AUTO's scene-features log line for the scene (one AUTO render of 1 sample at the run's size), cached."""
+    cache = ARGS.out / "cache"
+    cache.mkdir(parents=True, exist_ok=True)
+    saved = cache / f"{scene}_features_{ARGS.size}_{build_fingerprint()}.txt"
+    if not saved.exists():
+        res = run_blender(["--scene", scene, "--engine", "CANDELA", "--counts", "1", "--size", str(ARGS.size),
+                           "--threads", str(ARGS.threads), "--out", str(cache), "--tag", f"{scene}_features",
+                           "--set", "integrator=AUTO"], cache / f"{scene}_features.log")
+        lines = [l for l in res.get("info", []) if "Auto: scene features:" in l]
+        saved.write_text(lines[0] if lines else "")
+    return saved.read_text()
+
+
+def default_reference_integrator(scene):
+    """The Candela integrator for the scene's reference, from AUTO's scene analysis (stats.reference_integrator_for)."""
+    return stats.reference_integrator_for(features_line(scene))
+
+
 def reference(scene, engine, ref_samples):
     """A cached high-sample reference: the luminance of two independent half renders (accuracy_stats.errors
     averages them and uses their difference as the reference's own noise)."""
-    integrator = ARGS.reference_integrator.get(scene) if engine == "CANDELA" else None
+    integrator = None
+    if engine == "CANDELA":
+        if scene in ARGS.reference_integrator:
+            integrator = ARGS.reference_integrator[scene]
+            REFERENCE_WHY[scene] = (integrator, "--reference-integrator")
+        elif ARGS.default_reference:
+            integrator, why = default_reference_integrator(scene)
+            REFERENCE_WHY[scene] = (integrator or "PATH", why)
+            print(f"accuracy: {scene}: Candela reference by {integrator or 'PATH'} ({why})", flush=True)
     key = (f"{scene}_{engine}{'_' + integrator if integrator else ''}_{ARGS.size}_{ref_samples}_"
            f"{build_fingerprint() if engine == 'CANDELA' else 'cycles34'}")
     cache = ARGS.out / "cache"
@@ -182,7 +216,8 @@ def reference(scene, engine, ref_samples):
     files = [cache / f"{key}_{i}.exr" for i in (0, 1)]
     if ARGS.reuse and engine == "CANDELA" and not all(f.exists() for f in files):
         # --reuse: a reference another build rendered (PATH's image: valid while PATH's estimator is unchanged)
-        older = sorted(cache.glob(f"{scene}_{engine}_{ARGS.size}_{ref_samples}_*_0.exr"))
+        older = sorted(cache.glob(f"{scene}_{engine}{'_' + integrator if integrator else ''}_{ARGS.size}_"
+                                  f"{ref_samples}_*_0.exr"))
         if older:
             files = [older[-1], Path(str(older[-1])[:-len("_0.exr")] + "_1.exr")]
     if not all(f.exists() for f in files):
@@ -460,9 +495,12 @@ def write_outputs(scene_names, configs, results, rows, started):
           "an error made of smooth blotches, such as an irradiance cache's records'), s the local slope "
           "between them, τ the scatter of log(CPU time) about a straight line t₀ + c·samples over the counts ≥ "
           f"{TIME_NOISE_MIN_SAMPLES} (the load; c the Theil–Sen cost per sample).",
-          "- **Integrators other than PATH** are measured against the same Candela reference, which PATH renders"
-          + ("".join(f" ({s.replace('_', ' ')}: {i})" for s, i in ARGS.reference_integrator.items()
-                     if s in scene_names)) + ": their error includes their bias (the irradiance cache's interpolation and record noise, which do not "
+          "- **Integrators other than PATH** are measured against the same Candela reference, which PATH renders "
+          "except where the scene has caustic paths from a light no ray can hit (AUTO's scene analysis: a point, "
+          "spot or sun light and a delta surface): PATH cannot sample those caustics and its reference would lack "
+          "them, so BDPT renders it (--path-reference: PATH everywhere); the references not PATH's here:"
+          + ("".join(f" {s.replace('_', ' ')}: {i} ({why});" for s, (i, why) in REFERENCE_WHY.items()
+                     if s in scene_names and i != "PATH") or " none;") + " their error includes their bias (the irradiance cache's interpolation and record noise, which do not "
           "fall with the samples per pixel). The irradiance cache's pre-pass is part of its time: its set-up is "
           "taken to be PATH's on the same scene (the same export and BVH) rather than 2·t(1) − t(2), which would "
           "count the pre-pass as set-up. It is measured on the scenes its issue names (the Cornell box and the "

@@ -119,9 +119,11 @@ def main():
             seconds = native if native is not None else max(wall - setup, 1e-6)
             runs.append({"samples": n, "seconds": seconds, "wall_seconds": wall, "cpu_seconds": cpu, "exr": path,
                          "variant": tag})
+    # The last Candela render's Info log lines (AUTO's scene features: accuracy.py's choice of reference integrator).
+    info = sys.modules["candela.render_loop"].last_render_stats.get("info", []) if a.engine == "CANDELA" else []
     print("ACCURACY_JSON " + json.dumps({"scene": a.scene, "engine": a.engine, "settings": a.set,
                                          "size": [scene.render.resolution_x, scene.render.resolution_y],
-                                         "setup_seconds": setup, "runs": runs}), flush=True)
+                                         "setup_seconds": setup, "runs": runs, "info": info}), flush=True)
 
 
 if __name__ == "__main__":

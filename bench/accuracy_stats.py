@@ -24,6 +24,7 @@ Theil–Sen slope) is printed for comparison only.
 """
 
 import math
+import re
 
 import numpy as np
 
@@ -187,3 +188,21 @@ def crossing(target, samples, times, errs, line, err_log_sigmas=None):
     if how == "extrapolated":
         return f"extrapolated ×{t / pts[-1][1]:.2g} past {pts[-1][0]} spp", None
     return f"not reached by {pts[-1][0]} spp", None
+
+
+def reference_integrator_for(features_line):
+    """(integrator, why) for a Candela reference, from AUTO's "Auto: scene features:" log line (docs/auto.md,
+    "Acceptance"): ("BDPT", …) where the analysis finds caustic paths (L S+ D) and a light no ray can hit (point, spot,
+    sun: `unhittable`) and no object hidden from some ray type; else (None, …): PATH. PATH cannot build light → delta
+    surface(s) → diffuse paths from such a light, so its image lacks those caustics altogether, and a reference that
+    lacks a path class makes every integrator that renders it look wrong (window_glass: the sun's caustic under a
+    glass sphere); BDPT's light subpaths carry them, and BDPT is unbiased for every path PATH samples. BDPT cannot
+    honour per-ray-type visibility, hence PATH where objects are hidden."""
+    m = re.search(r"unhittable (\d+),", features_line)
+    unhittable = int(m.group(1)) if m else 0
+    caustic = "caustic paths yes" in features_line
+    hidden = re.search(r"hidden ray types 0x([0-9a-f]+)", features_line)
+    if caustic and unhittable > 0 and (hidden is None or int(hidden.group(1), 16) == 0):
+        return "BDPT", (f"{unhittable} light(s) no ray can hit and caustic paths (L S+ D): PATH cannot sample "
+                        "their caustics")
+    return None, "PATH samples every path class the analysis finds"

@@ -84,3 +84,21 @@ def test_crossing_says_interpolated_or_extrapolated():
     assert st.crossing(0.9, COUNTS, times, errs, line)[0] == "at 1 spp"
     bumpy = errs[:4] + [0.05, 0.3, 0.3]                   # below 0.06 at 16 spp only
     assert st.crossing(0.06, COUNTS, times, bumpy, None)[0] == "interpolated 8–16 spp"
+
+
+FEATURES = ("Auto: scene features: lights {n} (unhittable {u}, delta 0, small 0, large 1, zero-power 0; power share "
+            "unhittable 50 %, small 0 %), world constant; area: diffuse 90 %, glossy 0 %, specular 5 %, transmissive 5 "
+            "%, emissive 0.0 %; caustic paths {c}; camera perspective; hidden ray types 0x{h}")
+
+
+def test_reference_integrator_is_bdpt_only_for_caustics_from_lights_no_ray_hits():
+    # window_glass: a sun (unhittable) and a glass sphere → BDPT
+    assert st.reference_integrator_for(FEATURES.format(n=2, u=1, c="yes", h=0))[0] == "BDPT"
+    # caustic paths from a small area light only (hittable: PATH samples them, if slowly) → PATH
+    assert st.reference_integrator_for(FEATURES.format(n=1, u=0, c="yes", h=0))[0] is None
+    # a sun but no delta surface → PATH
+    assert st.reference_integrator_for(FEATURES.format(n=1, u=1, c="no", h=0))[0] is None
+    # hidden objects: BDPT cannot honour them → PATH
+    assert st.reference_integrator_for(FEATURES.format(n=1, u=1, c="yes", h=2))[0] is None
+    # no analysis line (a failed features run) → PATH
+    assert st.reference_integrator_for("")[0] is None

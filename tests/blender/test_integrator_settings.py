@@ -73,11 +73,14 @@ def test_auto_is_in_the_integrator_menu_with_its_stable_number_and_only_common_k
     rna = bpy.types.Scene.bl_rna.properties["candela"].fixed_type.properties
     items = {item.identifier: item.value for item in rna["integrator"].enum_items}
     assert items["AUTO"] == properties.INTEGRATOR_NUMBERS["AUTO"]
-    assert schema.integrator_params()["AUTO"] == []   # the chosen integrator's own settings stay at their defaults
+    # AUTO has no settings of its own: the chosen integrator's main settings come from AUTO's settings table (native
+    # auto_policy.cpp), the rest stay at their defaults
+    assert schema.integrator_params()["AUTO"] == []
     scene = tiny_scene(width=8, height=6, samples=1)
     scene.candela.integrator = "AUTO"
     sent = params.to_native_params(scene, scene.camera.data)
     assert sent["integrator"] == "AUTO"
+    assert "light_selection" not in sent   # else AUTO would keep it, not choose PATH's light selection
 
 
 def test_auto_is_told_of_an_animation_render_and_no_other_integrator_is():

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
+#include <variant>
 
 #include "film/film.h"
 #include "integrators/auto/auto_policy.h"
@@ -115,6 +117,7 @@ TEST(AutoPolicy, PilotSharesDecideWhereTheyCan) {
     f.pilot.total_mean = 1.0;
     f.pilot.mean = {0.1, 0.5, 0.2, 0.2};
     f.pilot.variance = {0.05, 0.2, 0.13, 0.62};
+    f.pilot.caustic_path_count = 20;
     AutoChoice c = choice_of(f);
     EXPECT_EQ(c.integrator, "BDPT");
     EXPECT_EQ(c.rule, "measured_caustics_bdpt");
@@ -130,6 +133,38 @@ TEST(AutoPolicy, PilotSharesDecideWhereTheyCan) {
     point.pilot.mean = {0.0, 0.7, 0.3, 0.0};
     point.pilot.variance = {0.0, 0.7, 0.3, 0.0};
     EXPECT_EQ(choice_of(point).rule, "caustics_bdpt");
+}
+
+// Rule 3a (measured_caustics_bdpt) trusts a dominant caustic share only from as many caustic paths as rule 3 needs
+// (20): the held-out table_caustic's pilot measured 66 % from one path. Below the count the static rule decides and
+// its reason says why; a scene without static caustic paths (a mirror under a large light) then stays with PATH.
+TEST(AutoPolicy, DominantCausticShareNeedsEnoughCausticPaths) {
+    SceneFeatures f = features_of(glass_caustic());
+    f.pilot_measured = true;
+    f.pilot.total_mean = 1.0;
+    f.pilot.mean = {0.0, 0.6, 0.3, 0.1};
+    f.pilot.variance = {0.0, 0.2, 0.14, 0.66};
+    for (uint64_t n : {uint64_t(1), uint64_t(19)}) {
+        f.pilot.caustic_path_count = n;
+        const AutoChoice c = choice_of(f);
+        EXPECT_EQ(c.rule, "caustics_bdpt") << n;
+        EXPECT_NE(c.reason.find("found caustic light " + std::to_string(n) + " times, too few to measure"),
+                  std::string::npos)
+            << c.reason;
+    }
+    f.pilot.caustic_path_count = 20;
+    EXPECT_EQ(choice_of(f).rule, "measured_caustics_bdpt");
+    SceneFeatures large = features_of(floor_and_mirror(true).arrays());  // no light: add the pilot's share by hand
+    large.specular_area = 4.0;
+    large.caustic_paths = false;
+    large.light_count = 1;
+    large.pilot_measured = true;
+    large.pilot = f.pilot;
+    large.pilot.caustic_path_count = 1;
+    large.pilot.mean = {0.0, 0.8, 0.1, 0.1};  // indirect 10 %: neither indirect rule
+    EXPECT_EQ(choice_of(large).rule, "specular_large_lights");
+    large.pilot.caustic_path_count = 20;
+    EXPECT_EQ(choice_of(large).rule, "measured_caustics_bdpt");
 }
 
 // Rule caustics_bdpt with a pilot: the caustic must show in the measured variance (≥ 10 %), else PATH and the reason

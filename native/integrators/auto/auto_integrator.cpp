@@ -48,8 +48,21 @@ public:
         features.pilot_measured = true;
         features.animation = m_animation;
         const AutoChoice choice = choose_integrator(features, &in_registry);
+        // The chosen integrator's main settings (auto_setting_rules), where the caller did not set them.
+        Params chosen_params = m_params;
+        std::string settings;
+        for (const AutoSetting& s : choice.settings) {
+            settings += settings.empty() ? "" : "; ";
+            if (m_params.has(s.key)) {  // the caller's (a scene dump of another integrator's params, a script)
+                settings += s.key + " as set, not " + s.describe();
+                continue;
+            }
+            chosen_params.set(s.key, s.value);
+            settings += s.describe();
+        }
         const bool tree_shared =
-            choice.integrator == "PATH" && parse_light_selection(path.light_selection) == LightSelection::Tree;
+            choice.integrator == "PATH" &&
+            parse_light_selection(PathSettings::from_params(chosen_params).light_selection) == LightSelection::Tree;
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() +
                           (tree_shared ? 0.0 : tree_ms);
         ctx.counters.stage.end();
@@ -60,10 +73,12 @@ public:
                       choice.rule.c_str(), ms, features.pilot.milliseconds, tree_ms,
                       tree_shared ? "PATH's own, not counted" : "counted in the analysis");
         ctx.info("Auto: chose " + choice.integrator + " \xe2\x80\x94 " + choice.reason + took);
-        ctx.counters.method.set("Auto: " + choice.integrator + " \xe2\x80\x94 " + choice.reason);
+        if (!settings.empty()) ctx.info("Auto: " + choice.integrator + " settings: " + settings);
+        ctx.counters.method.set("Auto: " + choice.integrator + " \xe2\x80\x94 " + choice.reason +
+                                (settings.empty() ? "" : "; settings: " + settings));
         const std::string skipped = scene_skips_line(scene_skips(choice.integrator, scene));
         if (!skipped.empty()) ctx.info(skipped);
-        std::unique_ptr<Integrator> chosen = find_integrator(choice.integrator).create(m_params);
+        std::unique_ptr<Integrator> chosen = find_integrator(choice.integrator).create(chosen_params);
         const std::string note = unhonoured_features_note(choice.integrator, chosen->honoured_features(), scene);
         if (!note.empty()) ctx.log(note);
         ctx.counters.work_total = chosen->budget().total;

@@ -2,6 +2,7 @@
 #include "integrators/auto/auto_policy.h"
 
 #include <cstdio>
+#include <variant>
 
 #include "core/error.h"
 #include "scene/ray_visibility.h"
@@ -21,12 +22,6 @@ constexpr uint32_t k_path_only_visibility = k_ray_diffuse | k_ray_glossy | k_ray
 
 bool nothing_lit(const SceneFeatures& f) { return f.light_count == 0 && f.world == WorldKind::None; }
 bool path_only_visibility(const SceneFeatures& f) { return (f.hidden_ray_types & k_path_only_visibility) != 0; }
-// The pilot's thresholds (docs/auto.md, "Pilot"): guesses, to be tuned by the acceptance measurement.
-constexpr double k_caustic_variance_share = 0.5;  // measured caustic variance share that calls for BDPT
-
-bool measured_caustics(const SceneFeatures& f) {
-    return f.pilot_measured && f.pilot.variance_share(PathClass::Caustic) >= k_caustic_variance_share;
-}
 // The pilot's indirect share of the lit energy (all but the emitted class) that calls for the irradiance cache, and
 // the share of the area that may be other than diffuse (docs/auto.md, "Acceptance": the Cornell box's 0.49 and the
 // room lit through a window's 0.56 against ≤ 0.13 on every other accuracy scene; both diffuse-only).
@@ -60,6 +55,14 @@ constexpr uint64_t k_measured_caustic_paths = 20;
 bool caustic_share_measured(const SceneFeatures& f) {
     return f.pilot_measured && f.delta_power <= 0.0 && f.pilot.caustic_path_count >= k_measured_caustic_paths;
 }
+// Rule 3a: a measured caustic variance share that calls for BDPT (a guess), trusted only from as many caustic paths
+// as rule 3 needs (until 2026-12-03 it had no count and fired on a share from one path: table_caustic's 66 % and
+// mirror_interior at 64 px, docs/auto.md); with fewer, rule 3's static feature decides.
+constexpr double k_caustic_variance_share = 0.5;
+bool measured_caustics(const SceneFeatures& f) {
+    return f.pilot_measured && f.pilot.caustic_path_count >= k_measured_caustic_paths &&
+           f.pilot.variance_share(PathClass::Caustic) >= k_caustic_variance_share;
+}
 bool caustics(const SceneFeatures& f) {
     if (!f.caustic_paths) return false;
     if (!caustic_share_measured(f)) return true;
@@ -69,9 +72,14 @@ bool specular_large_lights(const SceneFeatures& f) { return f.specular_area > 0.
 bool always(const SceneFeatures&) { return true; }
 
 std::string caustic_reason(const SceneFeatures& f) {
-    return "caustic paths (L S+ D): delta surfaces " + percent(f.area_share(f.specular_area)) + " of the area, " +
-           percent(f.unhittable_power_share() + f.small_power_share()) +
-           " of the light power from lights a path tracer cannot hit or rarely hits";
+    std::string r = "caustic paths (L S+ D): delta surfaces " + percent(f.area_share(f.specular_area)) +
+                    " of the area, " + percent(f.unhittable_power_share() + f.small_power_share()) +
+                    " of the light power from lights a path tracer cannot hit or rarely hits";
+    if (f.pilot_measured && !caustic_share_measured(f))
+        r += f.delta_power > 0.0 ? " (delta lights: the pilot cannot see their caustics)"
+                                 : " (the pilot's paths found caustic light " +
+                                       std::to_string(f.pilot.caustic_path_count) + " times, too few to measure)";
+    return r;
 }
 
 std::string default_reason(const SceneFeatures& f) {
@@ -120,6 +128,43 @@ const std::vector<AutoRule>& auto_rules() {
     return rules;
 }
 
+namespace {
+
+// PATH's light selection (docs/auto.md, "Settings"). With one light-set entry every selection picks it with
+// probability 1, so POWER's constant-time pick gives the same estimator as the tree without its traversal (tested:
+// the same image bit for bit); with more (an emissive mesh counts one per triangle) the light tree, the default,
+// which docs/sampling.md measures at 8× POWER's efficiency among 64 lights.
+AutoSetting path_light_selection(const SceneFeatures& f) {
+    if (f.light_count <= 1)
+        return {"light_selection", std::string("POWER"),
+                f.light_count == 0 ? "no lights to select among"
+                                   : "one light: every selection picks it, POWER without the tree's traversal"};
+    return {"light_selection", std::string("TREE"),
+            std::to_string(f.light_count) + " lights: the light tree favours the near, facing, bright ones"};
+}
+
+std::string value_text(const Params::Value& v) {
+    if (const auto* s = std::get_if<std::string>(&v)) return *s;
+    if (const auto* b = std::get_if<bool>(&v)) return *b ? "on" : "off";
+    if (const auto* i = std::get_if<int64_t>(&v)) return std::to_string(*i);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", std::get<double>(v));
+    return buf;
+}
+
+}  // namespace
+
+std::string AutoSetting::describe() const { return key + " " + value_text(value) + " (" + reason + ")"; }
+
+const std::vector<AutoSettingRule>& auto_setting_rules() {
+    // BDPT, IRRADIANCE_CACHE and SPPM have no entry: no measured feature argues for a setting other than their
+    // defaults yet (docs/auto.md, "Settings", says what was considered).
+    static const std::vector<AutoSettingRule> rules = {
+        {"PATH", "light_selection", &path_light_selection},
+    };
+    return rules;
+}
+
 bool flickers_in_animation(const std::string& integrator) {
     for (const char* name : {"MLT", "MMLT", "IRRADIANCE_CACHE", "PHOTON", "SPPM"})
         if (integrator == name) return true;
@@ -134,7 +179,9 @@ AutoChoice choose_integrator(const SceneFeatures& f, const std::function<bool(co
             if (skipped == nullptr) skipped = &r;
             continue;
         }
-        AutoChoice choice{r.integrator, r.name, r.reason(f)};
+        AutoChoice choice{r.integrator, r.name, r.reason(f), {}};
+        for (const AutoSettingRule& s : auto_setting_rules())
+            if (choice.integrator == s.integrator) choice.settings.push_back(s.choose(f));
         if (skipped != nullptr)
             choice.reason += std::string("; animation: not ") + skipped->integrator + " (rule " + skipped->name +
                              "), whose image would flicker from frame to frame";
