@@ -4,6 +4,7 @@
 // still sum to 1) — and the densities a subpath stores equal the ones recomputed from the path's vertices.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -19,7 +20,7 @@ namespace {
 
 /// An open room (floor, back and left walls) with a glass and a glossy sphere, a mirror and an emissive triangle, every kind of
 /// light (point, soft point, rectangle, sun, soft sun, a constant world).
-SceneArrays mis_scene() {
+SceneArrays mis_scene(const float* camera_rows16 = nullptr) {
     MeshBuilder b;
     const uint32_t wall = b.add_material(Color(0.6f), Color(0.f));
     const uint32_t glass = b.add_material(Color(0.f), Color(0.f));
@@ -54,7 +55,7 @@ SceneArrays mis_scene() {
         b.add_light(2, sun);
     }
     b.world_color = {0.2f, 0.2f, 0.25f};
-    return b.arrays();
+    return b.arrays(camera_rows16);
 }
 
 /// Fills v (cleared) as vertex i of the full path x (light end first) for a subpath from `light_side`.
@@ -168,6 +169,77 @@ TEST(BdptMis, TheWeightsOfAllStrategiesOfAPathSumToOne) {
                     }
             }
             EXPECT_GT(checked, 500) << camera;
+        }
+    }
+}
+
+// A path of two vertices, an emitter point the camera sees, has the strategies (0, 2) and (1, 1) (strategy.h). Their
+// weights sum to 1 where lens_strategy allows (1, 1) — the emissive triangle, for the perspective camera — and (0, 2)
+// weighs 1 alone elsewhere (the orthographic pinhole cannot be connected to). (1, 1)'s weight must be substantial: light tracing makes W·H splats per pass, and its density at a
+// point of the triangle is P(triangle)/A against the camera ray's ~N_e/(W·H·A) for a triangle covering N_e pixels.
+TEST(BdptMis, TheTwoStrategiesOfAnEmitterSeenDirectlySumToOne) {
+    // Looking up at the lamp triangle and the area light beside it, 64 × 48 pixels.
+    const std::vector<float> up_view = look_at(Vec3(0.3f, -0.6f, 0.f), Vec3(0.5f, 1.45f, -2.3f), Vec3(0.f, 0.f, -1.f));
+    const SceneArrays arrays = mis_scene(up_view.data());
+    constexpr int W = 64, H = 48;
+    Params p = basic_params(W, H, 1, 4);
+    BdptSettings settings;
+    settings.max_bounces = 4;
+    settings.rr_mode = RouletteMode::Off;
+    for (const std::string camera : {"PERSP", "ORTHO"}) {
+        Params q = p;
+        q.set("camera_type", camera);
+        const Scene scene(arrays, q, nullptr);
+        const EmitterSet emitters(scene.lights(), scene.bounds());
+        const BdptContext c{scene, emitters, settings};
+        for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power}) {
+            settings.heuristic = h;
+            std::vector<PathVertex> z(size_t(c.max_camera())), y(size_t(c.max_light()));
+            std::vector<VertexNumbers> zn(z.size()), yn(y.size());
+            std::vector<AreaLightHit> area;
+            std::vector<PathVertex> ys(y.size() + z.size()), zs(y.size() + z.size());
+            Sampler sampler = make_sampler("RANDOM", 7, 1);
+            int alone_triangle = 0, alone_area = 0, both = 0;
+            double lens_weight = 0.0;
+            for (int k = 0; k < 20000; ++k) {
+                std::visit([&](auto& s) { s.start_pixel_sample(uint32_t(k % W), uint32_t(k / W % H), uint32_t(k)); },
+                           sampler);
+                const Ray ray = scene.camera().generate_ray({float(k % W) + 0.5f, float(k / W % H) + 0.5f},
+                                                            get_2d(sampler, Dim::Lens));
+                PathStats stats;
+                float alpha = 1.f;
+                camera_subpath(c, ray, sampler, z, zn, area, stats, &alpha, nullptr);
+                if (light_subpath(c, sampler, y, yn, stats) < 1) continue;
+                const PathVertex& y0 = y[0];
+                if (y0.delta_light || y0.infinite) continue;
+                // A point with the lens strategy must be in view for both strategies to exist.
+                CameraConnection conn;
+                if (lens_strategy(c, y0) && !scene.camera().connect(y0.p, {0.5f, 0.5f}, &conn)) continue;
+                FullPath path{c, {&y[0], &z[0]}};
+                split(path, 0, ys, zs);
+                double sum = strategy_weight(c, ys, 0, zs, 2, nullptr, nullptr);
+                const bool triangle = std::holds_alternative<TriangleLight>(emitters[size_t(y0.emitter)]);
+                if (lens_strategy(c, y0)) {
+                    split(path, 1, ys, zs);
+                    const float w11 = strategy_weight(c, ys, 1, zs, 1, nullptr, nullptr);
+                    lens_weight += w11;
+                    sum += w11;
+                    ++both;
+                } else {
+                    ASSERT_EQ(sum, 1.0) << camera;
+                    ++(triangle ? alone_triangle : alone_area);
+                }
+                ASSERT_NEAR(sum, 1.0, 1e-4) << camera << " emitter " << y0.emitter;
+            }
+            if (camera == "PERSP") {
+                EXPECT_GT(both, 200) << "emissive-triangle points in view";
+                EXPECT_EQ(alone_triangle, 0);
+                // The suns take most of the emitted power, so P(triangle) is small and so is (1, 1)'s density.
+                EXPECT_GT(lens_weight / std::max(both, 1), 0.2) << "the mean weight of (1, 1)";
+            } else {
+                EXPECT_EQ(both, 0);
+                EXPECT_GT(alone_triangle + alone_area, 200);
+            }
         }
     }
 }

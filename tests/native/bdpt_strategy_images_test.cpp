@@ -113,8 +113,8 @@ TEST(BdptStrategyImages, EachUnweightedStrategyEstimatesAllLightOfItsDepth) {
 TEST(BdptStrategyImages, NamesAndBadPassesAreChecked) {
     EXPECT_EQ(StrategyImages::name({1, 1, 2}, false), "BDPT d1 s1 t2");
     EXPECT_EQ(StrategyImages::name({2, 3, 1}, true), "BDPT d2 s3 t1 unweighted");
-    EXPECT_EQ(StrategyImages::strategies(0).size(), 1u);  // (0, 2)
-    EXPECT_EQ(StrategyImages::strategies(2).size(), 1u + 3u + 4u);
+    EXPECT_EQ(StrategyImages::strategies(0).size(), 2u);  // (0, 2), (1, 1)
+    EXPECT_EQ(StrategyImages::strategies(2).size(), 2u + 3u + 4u);
     Params p = basic_params(4, 4, 1, 2);
     p.set("integrator", std::string("BDPT"));
     p.set("passes", std::string("BDPT d1 s3 t2"));  // s + t ≠ d + 2

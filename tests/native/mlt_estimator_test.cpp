@@ -86,7 +86,7 @@ TEST(MltEstimator, MultiplexedStrategyPmfSumsToOneAndIsWhatTheChoiceDraws) {
     // 10⁵ choices from uniform u have those frequencies: χ² over the strategies at significance 1e-4 per depth.
     for (int depth = 0; depth <= 13; ++depth) {
         const int n = mmlt_strategy_count(depth);
-        EXPECT_EQ(n, depth == 0 ? 1 : depth + 2) << depth;
+        EXPECT_EQ(n, depth + 2) << depth;  // s = 0 .. depth + 1 (depth 0: (0, 2) and (1, 1))
         double sum = 0.0;
         for (int s = -1; s <= depth + 2; ++s) sum += mmlt_strategy_pmf(depth, s);
         EXPECT_NEAR(sum, 1.0, 1e-6) << "depth " << depth;

@@ -55,10 +55,10 @@ void all_strategies(const BdptContext& c, Scratch& w, int nz, int ny, PathStats&
     for (int t = 1; t <= nz; ++t)
         for (int s = 0; s <= ny; ++s) {
             const int depth = s + t - 2;
-            // (1, 1), an emitter connected to the lens, is left to (0, 2), the camera ray that sees it: its weight
-            // would be tiny wherever the emitter is visible, and strategy_weight counts paths of two vertices as (0, 2)'s.
-            if (depth < 0 || depth > max_depth || (s == 0 && t == 1) || (s == 1 && t == 1)) continue;
+            if (depth < 0 || depth > max_depth || (s == 0 && t == 1)) continue;
             if (s == 0 && !c.s0_strategies) continue;  // nothing a ray can hit emits: zero, not evaluated
+            // (1, 1), the emitter point joined to the lens: only for emitters a camera ray can hit (strategy.h).
+            if (s == 1 && t == 1 && !lens_strategy(c, w.light[0])) continue;
             const StrategyResult r =
                 evaluate_strategy(c, w.light, s, w.camera, t, w.camera_numbers, w.light_numbers, nullptr, stats);
             record(r, s, t);
@@ -124,11 +124,14 @@ void BdptTracer::sample_strategy(const Ray& camera_ray, PrimarySampleSampler& u,
     Scratch& w = scratch;
     const BdptContext& c = m_context;
     w.fit(c);
-    if (s + t - 2 > c.settings.max_bounces + 1 || t < 1 || s < 0 || (t == 1 && s <= 1)) return;
+    if (s + t - 2 > c.settings.max_bounces + 1 || t < 1 || s < 0 || (t == 1 && s == 0)) return;
     const int nz = camera_subpath(c, camera_ray, u, w.camera, w.camera_numbers, w.area_hits, stats, t);
-    // s ≤ 1 needs no light subpath (s = 1 samples its emitter point from the camera vertex's numbers).
-    const int ny = s >= 2 ? light_subpath(c, u, w.light, w.light_numbers, stats, s) : s;
+    // s = 1 with t ≥ 2 needs no light subpath (it samples its emitter point from the camera vertex's numbers);
+    // (1, 1) joins the light subpath's origin to the lens.
+    const bool needs_light = s >= 2 || (s == 1 && t == 1);
+    const int ny = needs_light ? light_subpath(c, u, w.light, w.light_numbers, stats, s) : s;
     if (ny < s) return;
+    if (s == 1 && t == 1 && !lens_strategy(c, w.light[0])) return;
     auto emit = [&](const Color& weighted, const StrategyResult& r) { out.push_back({weighted, r.splat, r.raster}); };
     if (nz == t)
         emit_checked(evaluate_strategy(c, w.light, s, w.camera, t, w.camera_numbers, w.light_numbers, nullptr, stats),

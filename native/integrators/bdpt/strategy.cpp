@@ -93,9 +93,21 @@ float Densities::origin(const PathVertex& v, const PathVertex& toward) const {
     return m_c.emitters.pmf(uint32_t(e)) * (v.infinite ? dir : pos);
 }
 
+bool lens_strategy(const BdptContext& c, const PathVertex& light_end) {
+    if (light_end.infinite || !c.s0_strategies || !c.scene.camera().connectable()) return false;
+    const int32_t e = emitter_of(light_end);
+    if (e < 0) return false;
+    const Light& l = c.emitters[size_t(e)];
+    if (const auto* area = std::get_if<AreaLight>(&l)) return area->visible_camera;
+    if (std::holds_alternative<TriangleLight>(l))
+        return !(c.scene.hidden_ray_types() & k_ray_camera) && !c.scene.has_holdouts();
+    return false;  // point, spot and sun lights and the world: no camera ray hits them at a point
+}
+
 float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, int s, const std::vector<PathVertex>& z,
                       int t, const PathVertex* sampled, const PathVertex* area) {
-    if (s + t == 2) return 1.f;  // (0, 2): the only strategy of a two-vertex path (the tracer skips (1, 1))
+    // A two-vertex path: (0, 2) and (1, 1) where lens_strategy allows both, else (0, 2) alone.
+    if (s + t == 2 && !lens_strategy(c, s == 0 ? (area ? *area : z[1]) : y[0])) return 1.f;
     const Densities d(c);
     // `sampled` is the fresh vertex of the connection: the camera's for t = 1, else the light's for s = 1.
     auto Y = [&](int i) -> const PathVertex& {

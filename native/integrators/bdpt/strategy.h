@@ -7,6 +7,13 @@
 // connection changes the reverse densities of the two vertices on each side of it, recomputed here. Delta vertices
 // (delta lobes, delta lights, the lens of an orthographic pinhole) drop the strategies that would have to hit or
 // connect through them.
+//
+// A path of two vertices, an emitter the camera sees, has two strategies: (0, 2), the camera ray that hits it, and
+// (1, 1), a point sampled on the emitter joined to the lens (light tracing's image of the emitter). Their weights
+// compare the camera ray's area density at the point, about N_e/(W·H·A) for an emitter covering N_e of the W·H pixels
+// and of area A, with the emission's P(e)/A: where an emitter covers few pixels, the (1, 1) splats — W·H/N_e of them per
+// pixel of the emitter and pass, against one camera ray — carry its image and its antialiased edges. (1, 1) exists
+// for emitters a camera ray can hit (lens_strategy); for the others (0, 2) keeps the weight 1.
 #pragma once
 
 #include <vector>
@@ -51,6 +58,12 @@ private:
 /// y[0] for s = 1; `area` (s = 0) replaces the camera vertex t − 1 (an area light passed on that segment).
 float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, int s, const std::vector<PathVertex>& z,
                       int t, const PathVertex* sampled, const PathVertex* area);
+
+/// Whether strategy (1, 1) exists for a path whose emitter end is `light_end` (a light vertex, or a surface or area
+/// light a camera ray hit): an area light visible to the camera, or an emissive triangle in a scene where no object
+/// is hidden from the camera and none is a holdout (a light vertex does not know its object), with a camera a
+/// connection can reach.
+bool lens_strategy(const BdptContext& c, const PathVertex& light_end);
 
 /// Strategy (s, t) with s light and t camera vertices (s + t ≥ 2, t ≥ 1; for s = 0 the camera vertex t − 1 must be
 /// an emitter). `area` (s = 0 only): the area light hit on the camera subpath's segment t − 1 instead of its vertex.

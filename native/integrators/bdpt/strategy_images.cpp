@@ -9,7 +9,7 @@ std::vector<StrategyId> StrategyImages::strategies(int max_depth) {
     for (int d = 0; d <= max_depth; ++d)
         for (int s = 0; s <= d + 1; ++s) {
             const int t = d + 2 - s;
-            if (t == 1 && s <= 1) continue;  // (0, 1) and (1, 1) are not evaluated (bdpt_tracer.cpp)
+            if (t == 1 && s == 0) continue;  // (0, 1) is not a strategy (a pinhole lens cannot be hit)
             out.push_back({d, s, t});
         }
     return out;
@@ -39,8 +39,8 @@ StrategyImages::StrategyImages(int max_depth, int width, int height, int origin_
 
 int StrategyImages::strategy_index(int s, int t) const {
     const int d = s + t - 2;
-    if (d < 0 || d > m_max_depth || t < 1 || (t == 1 && s <= 1)) return -1;
-    return m_first[size_t(d)] + s;  // depth d lists s = 0 .. d + 1 except (d + 1, 1) never skipped for d ≥ 1
+    if (d < 0 || d > m_max_depth || t < 1 || (t == 1 && s == 0)) return -1;
+    return m_first[size_t(d)] + s;  // depth d lists s = 0 .. d + 1
 }
 
 void StrategyImages::record(Buffer& out, int s, int t, const Color& unweighted, float weight, Vec2 raster, bool splat,

@@ -32,8 +32,8 @@ public:
     };
     using Buffer = std::vector<Record>;
 
-    /// The strategies of depths 0..max_depth, in order of depth then s (t ≥ 1). (1, 1), an emitter joined to the
-    /// lens, is never evaluated (the camera ray that sees the emitter is (0, 2)'s), so depth 0 has (0, 2) alone.
+    /// The strategies of depths 0..max_depth, in order of depth then s (t ≥ 1): depth 0 has (0, 2) and (1, 1), an
+    /// emitter joined to the lens (zero for emitters no camera ray can hit: strategy.h, lens_strategy).
     static std::vector<StrategyId> strategies(int max_depth);
     /// The pass name of strategy `id`: "BDPT d1 s1 t2" (weighted) and "BDPT d1 s1 t2 unweighted".
     static std::string name(const StrategyId& id, bool unweighted);

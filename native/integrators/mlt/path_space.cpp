@@ -7,7 +7,9 @@
 
 namespace candela {
 
-int mmlt_strategy_count(int depth) { return depth == 0 ? 1 : depth + 2; }
+// Depth 0 counts (1, 1) too: where a path's emitter has no lens strategy (bdpt/strategy.h) it gives nothing and
+// (0, 2) keeps the weight 1, so the estimate, divided by the pmf 1/2, stays unbiased.
+int mmlt_strategy_count(int depth) { return depth + 2; }
 
 StrategyChoice mmlt_choose_strategy(int depth, float u) {
     const int n = mmlt_strategy_count(depth);
@@ -53,10 +55,8 @@ void PathSpace::evaluate(PrimarySampleSampler& u, int depth, PathStats& stats, M
     if (depth < 0) {
         m_tracer.sample_all(ray, u, stats, out.contributions);
     } else {
-        // Strategy s of the k + 2 with s + t − 2 = k (k = 0: (0, 2) alone; the tracer leaves (1, 1) to it), its
-        // contribution divided by the probability of choosing it.
-        const StrategyChoice c =
-            depth == 0 ? StrategyChoice{} : mmlt_choose_strategy(depth, u.sample_1d(strategy_dim()));
+        // Strategy s of the k + 2 with s + t − 2 = k, its contribution divided by the probability of choosing it.
+        const StrategyChoice c = mmlt_choose_strategy(depth, u.sample_1d(strategy_dim()));
         m_tracer.sample_strategy(ray, u, c.s, depth + 2 - c.s, stats, out.contributions);
         scale = float(mmlt_strategy_count(depth));  // 1 / c.pmf, exactly
     }
