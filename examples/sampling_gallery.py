@@ -158,7 +158,7 @@ def main():
     args = parse_args()
     # bench/accuracy.py's helpers read their settings from its module-level ARGS.
     accuracy.ARGS = argparse.Namespace(build=args.build, out=args.out, size=args.size, threads=args.threads,
-                                       reference_integrator={}, reuse=False)
+                                       reference_integrator={}, reuse=False, default_reference=False)
     native = accuracy.native_module()
     started = time.time()
     sections = [s for s in SECTIONS if not args.quick or s["id"] in QUICK_SECTIONS]

@@ -116,7 +116,7 @@ def test_bdpt_strategy_images_reach_the_multilayer_exr_and_sum_to_the_image(tmp_
     layer = bpy.context.view_layer.name
     from candela import schema
     names = schema.bdpt_strategy_passes(2)
-    assert len(names) == 2 * (1 + 3 + 4) and "BDPT d1 s1 t2" in names and "BDPT d2 s3 t1 unweighted" in names
+    assert len(names) == 2 * (2 + 3 + 4) and "BDPT d1 s1 t2" in names and "BDPT d2 s3 t1 unweighted" in names
     for name in names:
         assert f"{layer}.{name}.R" in channels, (name, sorted(channels)[:20])
     for c in "RGB":
