@@ -2,7 +2,8 @@
 // per second, as a share of the raw Embree incoherent ray rate measured in the same run on the same scene (rays
 // from visible surface points in uniform directions, bare rtcIntersect1: the ceiling), and the kd-tree build time
 // of the stored photons (target: 10 M photons in ≤ 2 s on 2 cores). Prints one JSON line.
-//   candela_bench_photons DUMP_DIR [--paths N] [--threads T]
+//   candela_bench_photons DUMP_DIR [--paths N] [--threads T] [--raw-rays R]
+// (--raw-rays: rays per raw-rate measurement, 2 M by default; a small R keeps a profiler's run on the shooting.)
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -67,16 +68,19 @@ double raw_ray_rate(const Scene& scene, int threads, size_t count, double* per_c
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: candela_bench_photons DUMP_DIR [--paths N] [--threads T]\n");
+        std::fprintf(stderr, "usage: candela_bench_photons DUMP_DIR [--paths N] [--threads T] [--raw-rays R]\n");
         return 2;
     }
     int64_t paths = 4'000'000;
     int threads = 0;
+    size_t raw_rays = 2'000'000;
     for (int i = 2; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--paths") && i + 1 < argc)
             paths = std::stoll(argv[++i]);
         else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
             threads = std::stoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--raw-rays") && i + 1 < argc)
+            raw_rays = size_t(std::stoll(argv[++i]));
     }
     try {
         SceneDump dump = read_scene_dump(argv[1]);
@@ -91,7 +95,7 @@ int main(int argc, char** argv) {
         RenderContext ctx{cancel, counters, threads};
 
         double raw_cpu_before = 0.0, raw_cpu_after = 0.0;
-        const double raw_before = raw_ray_rate(scene, threads, 2'000'000, &raw_cpu_before);
+        const double raw_before = raw_ray_rate(scene, threads, raw_rays, &raw_cpu_before);
         auto t0 = std::chrono::steady_clock::now();
         double c0 = cpu_now();
         PhotonShot shot = shoot_photons(tracer, emitters, PhotonStore::Global, paths, 1, 0, ctx, "Tracing photons");
@@ -110,7 +114,7 @@ int main(int argc, char** argv) {
         c0 = cpu_now();
         const PhotonMap map = build_photon_map(std::move(shot), ctx, "Building photon map");
         const double build_s = seconds_since(t0), build_cpu = cpu_now() - c0;
-        const double raw_after = raw_ray_rate(scene, threads, 2'000'000, &raw_cpu_after);
+        const double raw_after = raw_ray_rate(scene, threads, raw_rays, &raw_cpu_after);
         const double raw = 0.5 * (raw_before + raw_after), raw_cpu = 0.5 * (raw_cpu_before + raw_cpu_after);
         std::printf(
             "{\"photon_paths\": %lld, \"stored_photons\": %zu, \"shoot_seconds\": %.4f, "

@@ -108,6 +108,10 @@ public:
         return sample_general(wo, u, uc, mode);
     }
 
+    /// The colour of a lone Lambert lobe without bump shadowing (f = colour/π, sampled by the cosine), else null:
+    /// callers with a fast path for the most common material test it.
+    const Color* lone_lambert() const { return single_lambert() && !m_shadowing.active ? &m_lobes[0].weight : nullptr; }
+
     /// Directional albedo estimate Σ weight_i·albedo_i(wo) (the lobes' own estimates; for roulette and choices).
     Color albedo(const Vec3& wo) const {
         Color sum(0.f);

@@ -9,6 +9,7 @@
 // test binary's images depend on which test files it linked).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
@@ -120,8 +121,15 @@ Params golden_params() {
 struct GoldenCase {
     const char* name;
     std::vector<std::pair<std::string, Params::Value>> settings;
-    uint64_t hash;
+    // The image's hash on each machine kind it was recorded on (k_machine_kinds): one bit rounded differently
+    // on another CPU (in Embree's kernels or in libm, both of which pick code by CPU) changes every image.
+    std::array<uint64_t, 2> hash;
 };
+
+// The machine kinds the hashes were recorded on: [0] the first development machines (where every hash was first
+// recorded), [1] AMD EPYC with AVX2 and no AVX-512, recorded from a path tracer unchanged since [0]'s record (at
+// 15094fc every case differed from [0] there).
+constexpr int k_machine_kinds = 2;
 
 std::string hex(uint64_t h) {
     char buf[32];
@@ -134,34 +142,42 @@ std::string hex(uint64_t h) {
 const std::vector<GoldenCase>& golden_cases() {
     using S = std::string;
     static const std::vector<GoldenCase> cases = {
-        {"random", {{"sampler", S("RANDOM")}}, 0x8538de942522682full},
-        {"stratified", {{"sampler", S("STRATIFIED")}}, 0x38f85f25efa1ea46ull},
-        {"nrooks", {{"sampler", S("NROOKS")}}, 0x0e999f3a9d6a2012ull},
-        {"halton", {{"sampler", S("HALTON")}}, 0x692f87180c418505ull},
-        {"hammersley", {{"sampler", S("HAMMERSLEY")}}, 0x339cb03665fd4f32ull},
-        {"sobol", {{"sampler", S("SOBOL")}}, 0xf3ab392d0986279cull},
+        {"random", {{"sampler", S("RANDOM")}}, {0x8538de942522682full, 0xe0de03188eaebd55ull}},
+        {"stratified", {{"sampler", S("STRATIFIED")}}, {0x38f85f25efa1ea46ull, 0x751a0a581e16c97cull}},
+        {"nrooks", {{"sampler", S("NROOKS")}}, {0x0e999f3a9d6a2012ull, 0x309587ad4aef5b17ull}},
+        {"halton", {{"sampler", S("HALTON")}}, {0x692f87180c418505ull, 0xa34170fd5c0bab68ull}},
+        {"hammersley", {{"sampler", S("HAMMERSLEY")}}, {0x339cb03665fd4f32ull, 0x53664629a3e38eb9ull}},
+        {"sobol", {{"sampler", S("SOBOL")}}, {0xf3ab392d0986279cull, 0x4fafc9b4440b44beull}},
         {"cycles_equal",
          {{"light_selection", S("POWER")}, {"rr_mode", S("SQRT_THROUGHPUT")}, {"rr_start_bounce", int64_t(2)}},
-         0x52a61710a19e9102ull},
-        {"uniform_selection", {{"light_selection", S("UNIFORM")}}, 0x003b03fc6d4d9123ull},
-        {"area_selection", {{"light_selection", S("AREA")}}, 0x504d690fd97245edull},
-        {"all_lights", {{"light_selection", S("ALL")}}, 0x77ec10bc6c9c9d0eull},
-        {"ward", {{"light_selection", S("WARD")}, {"ward_threshold", 0.1}}, 0x84a6bac085947c6dull},
-        {"area_pdf", {{"light_pdf", S("AREA")}}, 0x4a1e926f531528a4ull},
-        {"bsdf_only", {{"light_sampling", S("BSDF_ONLY")}}, 0x4422773877b72fbdull},
-        {"light_only", {{"light_sampling", S("LIGHT_ONLY")}}, 0x862676df0e29f1d2ull},
-        {"balance", {{"mis_heuristic", S("BALANCE")}}, 0xd914a49f0e26431eull},
-        {"uniform_hemisphere", {{"hemisphere_sampling", S("UNIFORM")}}, 0xd458973ebb815237ull},
-        {"cosine_hemisphere", {{"hemisphere_sampling", S("COSINE")}}, 0x2d07b40ca3d3b5acull},
-        {"branching", {{"branching_factor", int64_t(3)}}, 0x0c746dfaf1fcf3f7ull},
-        {"light_samples", {{"light_samples", int64_t(2)}}, 0xd4a1c582afe49598ull},
-        {"albedo_roulette", {{"rr_mode", S("ALBEDO")}, {"rr_start_bounce", int64_t(1)}}, 0xf38cd9ba788826a3ull},
-        {"no_roulette", {{"rr_mode", S("OFF")}}, 0x8c2627cdd5dcc410ull},
+         {0x52a61710a19e9102ull, 0x0151c69e45c9c073ull}},
+        {"uniform_selection", {{"light_selection", S("UNIFORM")}}, {0x003b03fc6d4d9123ull, 0x913e38a356009414ull}},
+        {"area_selection", {{"light_selection", S("AREA")}}, {0x504d690fd97245edull, 0xc8c7f04f6c6636fcull}},
+        {"all_lights", {{"light_selection", S("ALL")}}, {0x77ec10bc6c9c9d0eull, 0x42bf7dfe12d2c2caull}},
+        {"ward",
+         {{"light_selection", S("WARD")}, {"ward_threshold", 0.1}},
+         {0x84a6bac085947c6dull, 0xf699728805ec5412ull}},
+        {"area_pdf", {{"light_pdf", S("AREA")}}, {0x4a1e926f531528a4ull, 0xf54411c2329fead5ull}},
+        {"bsdf_only", {{"light_sampling", S("BSDF_ONLY")}}, {0x4422773877b72fbdull, 0xc473089d4515706aull}},
+        {"light_only", {{"light_sampling", S("LIGHT_ONLY")}}, {0x862676df0e29f1d2ull, 0xb60fdcf6b03f38bfull}},
+        {"balance", {{"mis_heuristic", S("BALANCE")}}, {0xd914a49f0e26431eull, 0xe50619f308ae5a09ull}},
+        {"uniform_hemisphere", {{"hemisphere_sampling", S("UNIFORM")}}, {0xd458973ebb815237ull, 0xf27a1f29b83a5d31ull}},
+        {"cosine_hemisphere", {{"hemisphere_sampling", S("COSINE")}}, {0x2d07b40ca3d3b5acull, 0xf4d6e32b86e4d22cull}},
+        {"branching", {{"branching_factor", int64_t(3)}}, {0x0c746dfaf1fcf3f7ull, 0xd844f9afbfa0db92ull}},
+        {"light_samples", {{"light_samples", int64_t(2)}}, {0xd4a1c582afe49598ull, 0x104e09edfbaae641ull}},
+        {"albedo_roulette",
+         {{"rr_mode", S("ALBEDO")}, {"rr_start_bounce", int64_t(1)}},
+         {0xf38cd9ba788826a3ull, 0x0ca4543e53f486ddull}},
+        {"no_roulette", {{"rr_mode", S("OFF")}}, {0x8c2627cdd5dcc410ull, 0xf67e31601a0acd96ull}},
         // Recorded again when clamping took Cycles 3.4's rule (R + G + B against 3 × the clamp, not the brightest component).
-        {"clamped", {{"clamp_indirect", 0.5}}, 0x70b4ed69e2c44505ull},
-        {"transparent", {{"film_transparent", true}}, 0x6442ccf14e0b4690ull},
-        {"noise_stop", {{"samples", int64_t(256)}, {"noise_threshold", 0.25}}, 0x3aa6b438f8f70c55ull},
-        {"one_thread_tiles", {{"threads", int64_t(1)}, {"tile_size", int64_t(7)}}, 0xf3ab392d0986279cull},
+        {"clamped", {{"clamp_indirect", 0.5}}, {0x70b4ed69e2c44505ull, 0xd295865c425944b3ull}},
+        {"transparent", {{"film_transparent", true}}, {0x6442ccf14e0b4690ull, 0x10372365bca2d23eull}},
+        {"noise_stop",
+         {{"samples", int64_t(256)}, {"noise_threshold", 0.25}},
+         {0x3aa6b438f8f70c55ull, 0xda0b597c9c4d9853ull}},
+        {"one_thread_tiles",
+         {{"threads", int64_t(1)}, {"tile_size", int64_t(7)}},
+         {0xf3ab392d0986279cull, 0x4fafc9b4440b44beull}},
         {"gaussian_dof",
          {{"pixel_filter", S("GAUSSIAN")},
           {"filter_width", 2.0},
@@ -169,40 +185,55 @@ const std::vector<GoldenCase>& golden_cases() {
           {"focus_distance", 2.0},
           {"aperture_fstop", 2.8},
           {"aperture_blades", int64_t(6)}},
-         0x8cd9a03786fe8121ull},
+         {0x8cd9a03786fe8121ull, 0x7a1a2c69264097b8ull}},
     };
     return cases;
 }
 
 TEST(GoldenImage, PathTracerImagesAreBitIdenticalToTheRecordedOnes) {
-    std::string report;
-    int mismatches = 0;
+    // The images pass if one machine kind's hashes match every case: a changed image matches none (a 64-bit
+    // hash equal to another kind's record by chance is a 2^-64 event per case).
+    std::vector<uint64_t> hashes;
     for (const GoldenCase& c : golden_cases()) {
         Params p = golden_params();
         for (const auto& [key, value] : c.settings) p.set(key, value);
         const RenderResult r = render(golden_room(), p);  // through a Session, as the add-on renders
         EXPECT_GT(r.mean_rgb, 0.02) << c.name << ": the room is lit";
-        const uint64_t h = fnv1a(r.noise, fnv1a(r.rgba));
-        if (h != c.hash) {
-            ++mismatches;
-            report += std::string("  ") + c.name + ": " + hex(h) + " (recorded " + hex(c.hash) + ")\n";
+        hashes.push_back(fnv1a(r.noise, fnv1a(r.rgba)));
+    }
+    int best_kind = 0, best_matches = -1;
+    for (int k = 0; k < k_machine_kinds; ++k) {
+        int matches = 0;
+        for (size_t i = 0; i < hashes.size(); ++i) matches += hashes[i] == golden_cases()[i].hash[size_t(k)];
+        if (matches > best_matches) {
+            best_matches = matches;
+            best_kind = k;
         }
     }
-    EXPECT_EQ(mismatches, 0) << "path-tracer images changed:\n" << report;
+    std::string report;
+    for (size_t i = 0; i < hashes.size(); ++i) {
+        const GoldenCase& c = golden_cases()[i];
+        if (hashes[i] != c.hash[size_t(best_kind)])
+            report += std::string("  ") + c.name + ": " + hex(hashes[i]) + " (recorded " +
+                      hex(c.hash[size_t(best_kind)]) + " on machine kind " + std::to_string(best_kind) + ")\n";
+    }
+    EXPECT_EQ(best_matches, int(hashes.size())) << "path-tracer images changed:\n" << report;
 }
 
 // The golden cases really are different images (a case whose setting had no effect would guard nothing).
 TEST(GoldenImage, EveryCaseRecordsADistinctImage) {
-    std::vector<uint64_t> seen;
-    for (const GoldenCase& c : golden_cases()) {
-        if (std::string(c.name) == "one_thread_tiles") continue;  // the same image as "sobol", by determinism
-        for (uint64_t h : seen) EXPECT_NE(h, c.hash) << c.name;
-        seen.push_back(c.hash);
-    }
-    for (const GoldenCase& c : golden_cases()) {
-        if (std::string(c.name) != "one_thread_tiles") continue;
-        for (const GoldenCase& d : golden_cases())
-            if (std::string(d.name) == "sobol") EXPECT_EQ(c.hash, d.hash);
+    for (size_t k = 0; k < size_t(k_machine_kinds); ++k) {
+        std::vector<uint64_t> seen;
+        for (const GoldenCase& c : golden_cases()) {
+            if (std::string(c.name) == "one_thread_tiles") continue;  // the same image as "sobol", by determinism
+            for (uint64_t h : seen) EXPECT_NE(h, c.hash[k]) << c.name << " on machine kind " << k;
+            seen.push_back(c.hash[k]);
+        }
+        for (const GoldenCase& c : golden_cases()) {
+            if (std::string(c.name) != "one_thread_tiles") continue;
+            for (const GoldenCase& d : golden_cases())
+                if (std::string(d.name) == "sobol") EXPECT_EQ(c.hash[k], d.hash[k]);
+        }
     }
 }
 

@@ -108,6 +108,7 @@ public:
         Sample out;
         const ShadingPoint& sp = shading(w_l);
         const Bsdf& bsdf = sp.bsdf();
+        if (const Color* colour = bsdf.lone_lambert(); colour && flat(sp)) return sample_flat_lambert(w_l, *colour, u);
         const SurfaceVertex& v = vertex(w_l, sp);
         const float eps = mixture_share(v, bsdf);
         if (u_lobe < eps) {  // the cosine share about ng (non-delta)
@@ -193,6 +194,32 @@ public:
 
 private:
     int side(const Vec3& w) const { return dot(w, m_hit.ng) < 0.f ? 1 : 0; }
+
+    /// Whether the shading normal is the geometric one (a flat face, no bump): then ε = 0, both frames of a side
+    /// are ng's, and no direction above ng leaks.
+    bool flat(const ShadingPoint& sp) const {
+        return !sp.bent && sp.ns.x == m_hit.ng.x && sp.ns.y == m_hit.ng.y && sp.ns.z == m_hit.ng.z;
+    }
+    /// sample_light for a lone Lambert lobe of colour R on a flat face: the general path's BSDF sample (the cosine
+    /// about ng turned to w_l, in the frame vertex() builds there, so the same direction), whose weight
+    /// f·|w_c·ng|·(|w_l·n|/|w_l·ng|)/p is exactly R: f = R/π, p = cos θ/π with cos θ = |w_c·ng|, and n = ng.
+    Sample sample_flat_lambert(const Vec3& w_l, const Color& colour, Vec2 u) const {
+        Sample out;
+        const float cos_l = dot(w_l, m_hit.ng);
+        if (cos_l == 0.f) return out;  // w_l grazing: Lambert samples nothing (its local z is 0)
+        const Vec3 n = cos_l < 0.f ? -m_hit.ng : m_hit.ng;
+        const Vec3 local = sample_cosine_hemisphere(u);
+        if (local.z <= 1e-7f) return out;  // as LambertBsdf::sample: the disk's rim, a grazing direction
+        out.w = Frame(n).to_world(local);
+        if (!(dot(out.w, n) > 0.f)) return out;  // leaks() of the general path
+        out.pdf = cosine_hemisphere_pdf(local.z);
+        out.weight = colour;
+        out.bsdf.wi = local;
+        out.bsdf.f = colour * k_inv_pi;
+        out.bsdf.pdf = out.pdf;
+        out.bsdf.flags = k_bsdf_reflection | k_bsdf_diffuse;
+        return out;
+    }
 
     __attribute__((noinline)) void shade_side(int s, const Vec3& w) const {
         m_sp[s] = m_scene.shade(m_hit, w);
