@@ -105,7 +105,7 @@ bool lens_strategy(const BdptContext& c, const PathVertex& light_end) {
 }
 
 float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, int s, const std::vector<PathVertex>& z,
-                      int t, const PathVertex* sampled, const PathVertex* area) {
+                      int t, const PathVertex* sampled, const PathVertex* area, float lens_pdf_dir) {
     // A two-vertex path: (0, 2) and (1, 1) where lens_strategy allows both, else (0, 2) alone.
     if (s + t == 2 && !lens_strategy(c, s == 0 ? (area ? *area : z[1]) : y[0])) return 1.f;
     const Densities d(c);
@@ -131,7 +131,9 @@ float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, in
     const float pt_minus_rev = !pt_minus ? 0.f
                                : qs      ? d.light_side(pt, qs, *pt_minus, -w_conn, w_pt_prev)
                                          : d.emission(pt, *pt_minus, w_pt_prev);
-    const float qs_rev = qs ? d.camera_side(pt, pt_minus, *qs, w_pt_prev, -w_conn) : 0.f;
+    const float qs_rev = !qs                  ? 0.f
+                         : t == 1 && lens_pdf_dir >= 0.f ? solid_angle_to_area(pt, *qs, lens_pdf_dir)
+                                               : d.camera_side(pt, pt_minus, *qs, w_pt_prev, -w_conn);
     const float qs_minus_rev = qs_minus ? d.camera_side(*qs, &pt, *qs_minus, w_conn, w_qs_prev) : 0.f;
     const MisHeuristic h = c.settings.heuristic;
     const bool connectable = c.scene.camera().connectable();
@@ -173,6 +175,17 @@ bool visible(const Scene& scene, const PathVertex& a, const PathVertex& b, uint8
     const Vec3 seg = target - o;
     if (!(length_squared(seg) > 0.f)) return true;
     return !scene.occluded(o, seg, 1.f - k_shadow_epsilon, RayType(type), pa, pb);
+}
+
+/// Densities::camera_side's direction density for the lens vertex of connection `conn` (Camera::pdf_we of the ray
+/// from the lens point toward the connected point, without a margin: 0 outside the frame), from what connect()
+/// already computed — the same quantity (1/(A_img·cos³θ), or f²/(lens_area·cos³θ) for an orthographic lens)
+/// evaluated from the same points, equal to it up to rounding.
+float lens_direction_pdf(const Camera& camera, const CameraConnection& conn) {
+    const Vec2 r = conn.raster;
+    const bool in_frame = r.x >= 0.f && r.x <= float(camera.full_width()) && r.y >= 0.f &&
+                          r.y <= float(camera.full_height());
+    return in_frame ? conn.pdf_dir : 0.f;
 }
 
 /// The radiance an emitting camera vertex sends back along its path (s = 0).
@@ -266,7 +279,7 @@ StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVer
         if (is_black(r.L) || !visible(scene, qs, cam, k_ray_camera, stats)) return StrategyResult();
         r.splat = true;
         r.raster = conn.raster;
-        r.weight = strategy_weight(c, y, s, z, 1, &cam, nullptr);
+        r.weight = strategy_weight(c, y, s, z, 1, &cam, nullptr, lens_direction_pdf(scene.camera(), conn));
         return r;
     }
     const PathVertex& pt = z[size_t(t - 1)];
