@@ -66,6 +66,18 @@ float Densities::camera_side(const PathVertex& cur, const PathVertex* prev, cons
     if (cur.kind != VertexKind::Surface || !prev) return 0.f;
     return solid_angle_to_area(cur, next, cur.bsdf->pdf_camera(w_prev, w_next));
 }
+void Densities::camera_step(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, float* next_fwd,
+                            float* prev_rev) const {
+    const Vec3 w_next = direction(cur, next), w_prev = prev ? direction(cur, *prev) : Vec3(0.f);
+    *next_fwd = camera_side(cur, prev, next, w_prev, w_next);
+    if (prev) *prev_rev = light_side(cur, &next, *prev, w_next, w_prev);
+}
+void Densities::light_step(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, float* next_fwd,
+                           float* prev_rev) const {
+    const Vec3 w_next = direction(cur, next), w_prev = prev ? direction(cur, *prev) : Vec3(0.f);
+    *next_fwd = light_side(cur, prev, next, w_prev, w_next);
+    if (prev) *prev_rev = camera_side(cur, &next, *prev, w_next, w_prev);
+}
 float Densities::emission(const PathVertex& light, const PathVertex& next) const {
     return emission(light, next, direction(light, next));
 }

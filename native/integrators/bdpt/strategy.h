@@ -46,6 +46,13 @@ public:
     float camera_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, const Vec3& w_prev,
                       const Vec3& w_next) const;
     float emission(const PathVertex& light, const PathVertex& next, const Vec3& d) const;
+    /// A subpath's step from `cur` (reached from `prev`, or null) to `next`, in one: next's forward density and
+    /// prev's reverse one (without prev, prev_rev is not written), the same values as camera_side(cur, prev, next) and
+    /// light_side(cur, &next, *prev) (light_step: light_side and camera_side), each direction made once.
+    void camera_step(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, float* next_fwd,
+                     float* prev_rev) const;
+    void light_step(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, float* next_fwd,
+                    float* prev_rev) const;
     /// The density of an emitting vertex as the origin of a light subpath: P(emitter)·p_pos (a distant one: its
     /// direction's solid-angle density).
     float origin(const PathVertex& v, const PathVertex& toward) const;
