@@ -66,6 +66,18 @@ float Densities::camera_side(const PathVertex& cur, const PathVertex* prev, cons
     if (cur.kind != VertexKind::Surface || !prev) return 0.f;
     return solid_angle_to_area(cur, next, cur.bsdf->pdf_camera(w_prev, w_next));
 }
+void Densities::camera_step(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, float* next_fwd,
+                            float* prev_rev) const {
+    const Vec3 w_next = direction(cur, next), w_prev = prev ? direction(cur, *prev) : Vec3(0.f);
+    *next_fwd = camera_side(cur, prev, next, w_prev, w_next);
+    if (prev) *prev_rev = light_side(cur, &next, *prev, w_next, w_prev);
+}
+void Densities::light_step(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, float* next_fwd,
+                           float* prev_rev) const {
+    const Vec3 w_next = direction(cur, next), w_prev = prev ? direction(cur, *prev) : Vec3(0.f);
+    *next_fwd = light_side(cur, prev, next, w_prev, w_next);
+    if (prev) *prev_rev = camera_side(cur, &next, *prev, w_next, w_prev);
+}
 float Densities::emission(const PathVertex& light, const PathVertex& next) const {
     return emission(light, next, direction(light, next));
 }
@@ -105,7 +117,7 @@ bool lens_strategy(const BdptContext& c, const PathVertex& light_end) {
 }
 
 float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, int s, const std::vector<PathVertex>& z,
-                      int t, const PathVertex* sampled, const PathVertex* area) {
+                      int t, const PathVertex* sampled, const PathVertex* area, const KnownConnection& known) {
     // A two-vertex path: (0, 2) and (1, 1) where lens_strategy allows both, else (0, 2) alone.
     if (s + t == 2 && !lens_strategy(c, s == 0 ? (area ? *area : z[1]) : y[0])) return 1.f;
     const Densities d(c);
@@ -124,14 +136,16 @@ float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, in
     const PathVertex* pt_minus = t > 1 ? &Z(t - 2) : nullptr;
     // The reverse densities the connection changes, from the three unit directions they need (each made once:
     // direction(b, a) = −direction(a, b) exactly, as no connection joins two distant vertices).
-    const Vec3 w_conn = qs ? direction(*qs, pt) : Vec3(0.f);  // light side → camera side
+    const Vec3 w_conn = !qs ? Vec3(0.f) : known.w ? *known.w : direction(*qs, pt);  // light side → camera side
     const Vec3 w_qs_prev = qs_minus ? direction(*qs, *qs_minus) : Vec3(0.f);
     const Vec3 w_pt_prev = pt_minus ? direction(pt, *pt_minus) : Vec3(0.f);
     const float pt_rev = qs ? d.light_side(*qs, qs_minus, pt, w_qs_prev, w_conn) : d.origin(pt, *pt_minus);
     const float pt_minus_rev = !pt_minus ? 0.f
                                : qs      ? d.light_side(pt, qs, *pt_minus, -w_conn, w_pt_prev)
                                          : d.emission(pt, *pt_minus, w_pt_prev);
-    const float qs_rev = qs ? d.camera_side(pt, pt_minus, *qs, w_pt_prev, -w_conn) : 0.f;
+    const float qs_rev = !qs                                   ? 0.f
+                         : t == 1 && known.lens_pdf_dir >= 0.f ? solid_angle_to_area(pt, *qs, known.lens_pdf_dir)
+                                                               : d.camera_side(pt, pt_minus, *qs, w_pt_prev, -w_conn);
     const float qs_minus_rev = qs_minus ? d.camera_side(*qs, &pt, *qs_minus, w_conn, w_qs_prev) : 0.f;
     const MisHeuristic h = c.settings.heuristic;
     const bool connectable = c.scene.camera().connectable();
@@ -161,18 +175,30 @@ Vec3 leave(const PathVertex& v, const Vec3& w) {
     return offset_ray_origin(v.p, dot(w, v.ng) > 0.f ? v.ng : -v.ng);
 }
 
-/// Whether the segment between two finite vertices (or toward a distant one) is unblocked for rays of `type`.
-bool visible(const Scene& scene, const PathVertex& a, const PathVertex& b, uint8_t type, PathStats& stats) {
+/// Whether the segment between two finite vertices (or toward a distant one) is unblocked for rays of `type`;
+/// w = direction(a, b).
+bool visible(const Scene& scene, const PathVertex& a, const PathVertex& b, const Vec3& w, uint8_t type,
+             PathStats& stats) {
     ++stats.rays;
     const PrimitiveRef pa = a.kind == VertexKind::Surface ? a.hit.primitive : PrimitiveRef{};
     const PrimitiveRef pb = b.kind == VertexKind::Surface ? b.hit.primitive : PrimitiveRef{};
-    const Vec3 w = direction(a, b);
     const Vec3 o = leave(a, w);
     if (b.infinite) return !scene.occluded(o, w, std::numeric_limits<float>::infinity(), RayType(type), pa);
     const Vec3 target = b.on_surface() ? leave(b, -w) : b.p;
     const Vec3 seg = target - o;
     if (!(length_squared(seg) > 0.f)) return true;
     return !scene.occluded(o, seg, 1.f - k_shadow_epsilon, RayType(type), pa, pb);
+}
+
+/// Densities::camera_side's direction density for the lens vertex of connection `conn` (Camera::pdf_we of the ray
+/// from the lens point toward the connected point, without a margin: 0 outside the frame), from what connect()
+/// already computed — the same quantity (1/(A_img·cos³θ), or f²/(lens_area·cos³θ) for an orthographic lens)
+/// evaluated from the same points, equal to it up to rounding.
+float lens_direction_pdf(const Camera& camera, const CameraConnection& conn) {
+    const Vec2 r = conn.raster;
+    const bool in_frame = r.x >= 0.f && r.x <= float(camera.full_width()) && r.y >= 0.f &&
+                          r.y <= float(camera.full_height());
+    return in_frame ? conn.pdf_dir : 0.f;
 }
 
 /// The radiance an emitting camera vertex sends back along its path (s = 0).
@@ -207,7 +233,8 @@ StrategyResult connect_soft_point(const BdptContext& c, const std::vector<PathVe
     centre.delta_light = true;
     centre.pdf_fwd = pmf;
     r.L = pt.beta * f * ls.Li * (pt.bsdf->camera_cosine(pt.w, ls.wi) / (pmf * ls.pdf));
-    if (is_black(r.L) || !visible(c.scene, pt, on_disk, k_ray_shadow, stats)) return StrategyResult();
+    if (is_black(r.L) || !visible(c.scene, pt, on_disk, direction(pt, on_disk), k_ray_shadow, stats))
+        return StrategyResult();
     r.weight = strategy_weight(c, y, 1, z, t, &centre, nullptr);
     return r;
 }
@@ -263,10 +290,11 @@ StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVer
             if (scene.has_holdouts()) cosine *= 1.f - scene.holdout(qs.hit, conn.wi);
         }
         r.L = qs.beta * f * (cosine * conn.importance);
-        if (is_black(r.L) || !visible(scene, qs, cam, k_ray_camera, stats)) return StrategyResult();
+        const Vec3 w = direction(qs, cam);
+        if (is_black(r.L) || !visible(scene, qs, cam, w, k_ray_camera, stats)) return StrategyResult();
         r.splat = true;
         r.raster = conn.raster;
-        r.weight = strategy_weight(c, y, s, z, 1, &cam, nullptr);
+        r.weight = strategy_weight(c, y, s, z, 1, &cam, nullptr, {&w, lens_direction_pdf(scene.camera(), conn)});
         return r;
     }
     const PathVertex& pt = z[size_t(t - 1)];
@@ -307,8 +335,9 @@ StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVer
             if (!ep.delta_pos) g *= std::fabs(dot(ep.n, w_l));
         }
         r.L = pt.beta * f * Le * (g / (pmf * ep.pdf_pos));
-        if (!visible(scene, pt, lv, k_ray_shadow, stats)) return StrategyResult();
-        r.weight = strategy_weight(c, y, 1, z, t, &lv, nullptr);
+        if (!visible(scene, pt, lv, w_l, k_ray_shadow, stats)) return StrategyResult();
+        const Vec3 w_conn = -w_l;  // direction(lv, pt) exactly: negation and normalize commute
+        r.weight = strategy_weight(c, y, 1, z, t, &lv, nullptr, {&w_conn});
         return r;
     }
     // s ≥ 2, t ≥ 2: join light vertex s − 1 and camera vertex t − 1.
@@ -322,8 +351,8 @@ StrategyResult evaluate_strategy(const BdptContext& c, const std::vector<PathVer
     const float d2 = length_squared(pt.p - qs.p);
     const float g = std::fabs(dot(w, qs.ng)) * qs.bsdf->adjoint_factor(w, qs.w) * pt.bsdf->camera_cosine(pt.w, -w) / d2;
     r.L = qs.beta * f_light * f_camera * pt.beta * g;
-    if (is_black(r.L) || !visible(scene, qs, pt, k_ray_shadow, stats)) return StrategyResult();
-    r.weight = strategy_weight(c, y, s, z, t, nullptr, nullptr);
+    if (is_black(r.L) || !visible(scene, qs, pt, w, k_ray_shadow, stats)) return StrategyResult();
+    r.weight = strategy_weight(c, y, s, z, t, nullptr, nullptr, {&w});
     return r;
 }
 

@@ -46,6 +46,13 @@ public:
     float camera_side(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, const Vec3& w_prev,
                       const Vec3& w_next) const;
     float emission(const PathVertex& light, const PathVertex& next, const Vec3& d) const;
+    /// A subpath's step from `cur` (reached from `prev`, or null) to `next`, in one: next's forward density and
+    /// prev's reverse one (without prev, prev_rev is not written), the same values as camera_side(cur, prev, next) and
+    /// light_side(cur, &next, *prev) (light_step: light_side and camera_side), each direction made once.
+    void camera_step(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, float* next_fwd,
+                     float* prev_rev) const;
+    void light_step(const PathVertex& cur, const PathVertex* prev, const PathVertex& next, float* next_fwd,
+                    float* prev_rev) const;
     /// The density of an emitting vertex as the origin of a light subpath: P(emitter)·p_pos (a distant one: its
     /// direction's solid-angle density).
     float origin(const PathVertex& v, const PathVertex& toward) const;
@@ -56,8 +63,14 @@ private:
 
 /// The MIS weight of strategy (s, t) of the path y[0 .. s) + z[t − 1 .. 0]; `sampled` replaces z[0] for t = 1, else
 /// y[0] for s = 1; `area` (s = 0) replaces the camera vertex t − 1 (an area light passed on that segment).
+/// `known`: what the connection already computed, bit for bit what the weight would compute from the vertices.
+struct KnownConnection {
+    const Vec3* w = nullptr;     // the unit direction from light vertex s − 1 toward camera vertex t − 1 (s, t ≥ 1)
+    float lens_pdf_dir = -1.f;  // t = 1, when ≥ 0: the lens vertex's solid-angle density toward light vertex s − 1,
+                                // as Camera::pdf_we gives it (up to rounding)
+};
 float strategy_weight(const BdptContext& c, const std::vector<PathVertex>& y, int s, const std::vector<PathVertex>& z,
-                      int t, const PathVertex* sampled, const PathVertex* area);
+                      int t, const PathVertex* sampled, const PathVertex* area, const KnownConnection& known = {});
 
 /// Whether strategy (1, 1) exists for a path whose emitter end is `light_end` (a light vertex, or a surface or area
 /// light a camera ray hit): an area light visible to the camera, or an emissive triangle in a scene where no object

@@ -33,6 +33,17 @@ void make_surface(PathVertex& v, const Scene& scene, const SurfaceHit& hit, cons
     v.bsdf.emplace(scene, v.hit, v.w, scene.shade(v.hit, v.w));
 }
 
+/// The densities that camera vertex z[n] (just made) fixes: its own forward one and z[n − 2]'s reverse one.
+void camera_densities(const Densities& d, std::vector<PathVertex>& z, int n) {
+    PathVertex* prev = n >= 2 ? &z[size_t(n - 2)] : nullptr;
+    if (z[size_t(n - 1)].delta) {
+        z[size_t(n)].pdf_fwd = 0.f;
+        if (prev) prev->pdf_rev = 0.f;
+        return;
+    }
+    d.camera_step(z[size_t(n - 1)], prev, z[size_t(n)], &z[size_t(n)].pdf_fwd, prev ? &prev->pdf_rev : nullptr);
+}
+
 template <class S>
 int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVertex>& z,
                 std::vector<VertexNumbers>& numbers, std::vector<AreaLightHit>& area_hits, PathStats& stats,
@@ -88,8 +99,7 @@ int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVerte
             v.beta = beta;
             v.emitter = c.emitters.world();
             // Solid angle: a distant vertex.
-            v.pdf_fwd = z[n - 1].delta ? 0.f : d.camera_side(z[n - 1], n >= 2 ? &z[n - 2] : nullptr, v);
-            if (n >= 2) z[n - 2].pdf_rev = z[n - 1].delta ? 0.f : d.light_side(z[n - 1], &v, z[n - 2]);
+            camera_densities(d, z, n);
             return n + 1;
         }
         if (bounce == 0 && !camera_hit(scene, ray, hit, aov, alpha)) return n;  // data passes, holdout
@@ -97,8 +107,7 @@ int camera_walk(const BdptContext& c, Ray ray, S& sampler, std::vector<PathVerte
         make_surface(v, scene, hit, ray, beta);
         // The densities MIS uses, from the vertices' positions (the connections recompute theirs so too: the
         // weights of a path's strategies then sum to 1 exactly, ray-origin offsets and all).
-        v.pdf_fwd = z[n - 1].delta ? 0.f : d.camera_side(z[n - 1], n >= 2 ? &z[n - 2] : nullptr, v);
-        if (n >= 2) z[n - 2].pdf_rev = z[n - 1].delta ? 0.f : d.light_side(z[n - 1], &v, z[n - 2]);
+        camera_densities(d, z, n);
         ++n;
         if (n >= c.max_camera()) return n;
         const bool roulette_here = cfg.rr_mode != RouletteMode::Off && bounce + 1 >= cfg.rr_start_bounce;
@@ -178,9 +187,10 @@ int light_walk(const BdptContext& c, S& sampler, std::vector<PathVertex>& y, std
         // From the positions, as the connections recompute them (see camera_walk).
         if (n == 1)
             v.pdf_fwd = d.emission(y[0], v);  // a distant light: the disk's density across the rays
+        else if (y[n - 1].delta)
+            v.pdf_fwd = y[n - 2].pdf_rev = 0.f;
         else
-            v.pdf_fwd = y[n - 1].delta ? 0.f : d.light_side(y[n - 1], &y[n - 2], v);
-        if (n >= 2) y[n - 2].pdf_rev = y[n - 1].delta ? 0.f : d.camera_side(y[n - 1], &v, y[n - 2]);
+            d.light_step(y[n - 1], &y[n - 2], v, &v.pdf_fwd, &y[n - 2].pdf_rev);
         if (depth == 1) beta_ref = max_component(beta);
         ++n;
         const bool last = n >= limit;
