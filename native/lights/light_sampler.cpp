@@ -41,7 +41,7 @@ namespace {
 
 /// pbrt-v4's orientation measure M_Ω of a cone (θ_o, θ_e).
 float cone_measure(float cos_o, float cos_e) {
-    const float theta_o = std::acos(clamp(cos_o, -1.f, 1.f)), theta_e = std::acos(clamp(cos_e, -1.f, 1.f));
+    const float theta_o = acos_clamped(cos_o), theta_e = acos_clamped(cos_e);
     const float theta_w = std::min(theta_o + theta_e, k_pi);
     const float sin_o = std::sin(theta_o);
     return 2.f * k_pi * (1.f - cos_o) +
