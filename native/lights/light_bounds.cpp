@@ -23,7 +23,7 @@ float angle_between_unit(const Vec3& a, const Vec3& b) {
 
 /// Smallest (up to a tiny slack) cone containing cones (wa, θa) and (wb, θb).
 void union_cones(const Vec3& wa, float cos_a, const Vec3& wb, float cos_b, Vec3* w, float* cos_out) {
-    const float ta = std::acos(clamp(cos_a, -1.f, 1.f)), tb = std::acos(clamp(cos_b, -1.f, 1.f));
+    const float ta = acos_clamped(cos_a), tb = acos_clamped(cos_b);
     const float td = angle_between_unit(wa, wb);
     if (std::min(td + tb, k_pi) <= ta) {
         *w = wa;

@@ -6,6 +6,7 @@
 // Also: per-light upper bounds of the unoccluded irradiance at a point (Ward 1991 adaptive shadow testing).
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <optional>
 
@@ -13,6 +14,16 @@
 #include "lights/light.h"
 
 namespace candela {
+
+/// acos of cos clamped to [−1, 1], skipping libm for the two cosines the light tree meets most: 1 (a single
+/// emitter's normal cone) and 0 (a Lambertian emission spread, θ_e = π/2). acosf(1) = +0 and acosf(±0) = π/2
+/// rounded to float, correctly rounded by libm at both points, so the result has the same bits as the call
+/// (LightBoundsAcos.MatchesLibm checks it); NaN still goes through std::acos.
+inline float acos_clamped(float c) {
+    if (c >= 1.f) return 0.f;
+    if (c == 0.f) return 1.57079632679489661923f;
+    return std::acos(c <= -1.f ? -1.f : c);
+}
 
 struct Bounds3 {
     Vec3 lo{std::numeric_limits<float>::infinity()};

@@ -41,7 +41,7 @@ namespace {
 
 /// pbrt-v4's orientation measure M_Ω of a cone (θ_o, θ_e).
 float cone_measure(float cos_o, float cos_e) {
-    const float theta_o = std::acos(clamp(cos_o, -1.f, 1.f)), theta_e = std::acos(clamp(cos_e, -1.f, 1.f));
+    const float theta_o = acos_clamped(cos_o), theta_e = acos_clamped(cos_e);
     const float theta_w = std::min(theta_o + theta_e, k_pi);
     const float sin_o = std::sin(theta_o);
     return 2.f * k_pi * (1.f - cos_o) +
@@ -140,16 +140,25 @@ uint32_t TreeLightSampler::build(std::vector<std::pair<uint32_t, LightBounds>>& 
                 b = std::clamp(b, 0, k_buckets - 1);
                 buckets[b] = union_bounds(buckets[b], items[i].second);
             }
-            for (int s = 0; s < k_buckets - 1; ++s) {
-                LightBounds below, above;
-                for (int b = 0; b <= s; ++b) below = union_bounds(below, buckets[b]);
-                for (int b = s + 1; b < k_buckets; ++b) above = union_bounds(above, buckets[b]);
-                if (!(below.phi > 0.f) || !(above.phi > 0.f)) continue;
+            // Splits after bucket s, for s < 11. union_bounds returns the other operand unchanged when one has no
+            // flux, so folding only the occupied buckets (in order) gives the same bits as folding all of them, and
+            // every split between two consecutive occupied buckets has the same two halves, hence the same cost:
+            // only the first of them (s = the lower occupied bucket) can win under the strict `<`. `below` grows by
+            // one bucket per split (the same left fold as forming it anew); `above` is folded anew each time, since
+            // a suffix sweep would add the fluxes in another order and could flip near-tied splits.
+            int occupied[k_buckets], m = 0;
+            for (int b = 0; b < k_buckets; ++b)
+                if (buckets[b].phi > 0.f) occupied[m++] = b;
+            LightBounds below;
+            for (int i = 0; i + 1 < m; ++i) {
+                below = union_bounds(below, buckets[occupied[i]]);
+                LightBounds above = buckets[occupied[i + 1]];
+                for (int j = i + 2; j < m; ++j) above = union_bounds(above, buckets[occupied[j]]);
                 const float cost = saoh_cost(below, extent, a) + saoh_cost(above, extent, a);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_axis = a;
-                    best_bucket = s;
+                    best_bucket = occupied[i];
                 }
             }
         }
