@@ -24,7 +24,13 @@ uint32_t bits(float f) {
 }
 
 TEST(LightBoundsAcos, MatchesLibm) {
-    std::vector<float> cs = {0.f, -0.f, 1.f, -1.f, 1.5f, -1.5f, std::numeric_limits<float>::infinity(),
+    std::vector<float> cs = {0.f,
+                             -0.f,
+                             1.f,
+                             -1.f,
+                             1.5f,
+                             -1.5f,
+                             std::numeric_limits<float>::infinity(),
                              -std::numeric_limits<float>::infinity()};
     for (float c : {0.f, 1.f, -1.f})
         for (int k = 0; k < 64; ++k) {  // the floats next to the special points

@@ -196,8 +196,8 @@ bool visible(const Scene& scene, const PathVertex& a, const PathVertex& b, const
 /// evaluated from the same points, equal to it up to rounding.
 float lens_direction_pdf(const Camera& camera, const CameraConnection& conn) {
     const Vec2 r = conn.raster;
-    const bool in_frame = r.x >= 0.f && r.x <= float(camera.full_width()) && r.y >= 0.f &&
-                          r.y <= float(camera.full_height());
+    const bool in_frame =
+        r.x >= 0.f && r.x <= float(camera.full_width()) && r.y >= 0.f && r.y <= float(camera.full_height());
     return in_frame ? conn.pdf_dir : 0.f;
 }
 

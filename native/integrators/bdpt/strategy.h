@@ -65,7 +65,7 @@ private:
 /// y[0] for s = 1; `area` (s = 0) replaces the camera vertex t − 1 (an area light passed on that segment).
 /// `known`: what the connection already computed, bit for bit what the weight would compute from the vertices.
 struct KnownConnection {
-    const Vec3* w = nullptr;     // the unit direction from light vertex s − 1 toward camera vertex t − 1 (s, t ≥ 1)
+    const Vec3* w = nullptr;  // the unit direction from light vertex s − 1 toward camera vertex t − 1 (s, t ≥ 1)
     float lens_pdf_dir = -1.f;  // t = 1, when ≥ 0: the lens vertex's solid-angle density toward light vertex s − 1,
                                 // as Camera::pdf_we gives it (up to rounding)
 };
