@@ -50,6 +50,7 @@ public:
         m_sp[s].copy_from(sp);
         if (m_subset) m_sp[s].own(m_subset->apply(sp.bsdf()));
         m_shaded[s] = true;
+        classify_side(s);
     }
 
     const SurfaceHit& hit() const { return m_hit; }
@@ -64,7 +65,12 @@ public:
     /// f(w_c, w_l) of the rule above (non-delta lobes), with bump shadowing where a Bump or Normal Map node bent the
     /// normal (bsdf/bsdf.h: it scales f only, so every sampling density here is unchanged).
     Color f(const Vec3& w_c, const Vec3& w_l) const {
-        const ShadingPoint& sp = shading(w_c);
+        const int s = shaded_side(w_c);
+        if (m_flat_lambert[s]) {
+            const Vec3 n = turned_ng(s);
+            return dot(w_c, n) > 0.f && dot(w_l, n) > 0.f ? m_lambert_colour[s] * Color(k_inv_pi) : Color(0.f);
+        }
+        const ShadingPoint& sp = m_sp[s];
         const SurfaceVertex& v = vertex(w_c, sp);
         const Vec3 l = v.frame.to_local(w_l);
         if (leaks(dot(w_l, v.ng), l.z)) return Color(0.f);
@@ -77,7 +83,13 @@ public:
     }
     /// The density with which camera-side BSDF sampling from w_c produces w_l (0 where it leaks).
     float pdf_camera(const Vec3& w_c, const Vec3& w_l) const {
-        const ShadingPoint& sp = shading(w_c);
+        const int s = shaded_side(w_c);
+        if (m_flat_lambert[s]) {
+            const Vec3 n = turned_ng(s);
+            const float cos_l = dot(w_l, n);
+            return dot(w_c, n) > 0.f && cos_l > 0.f ? cosine_hemisphere_pdf(cos_l) : 0.f;
+        }
+        const ShadingPoint& sp = m_sp[s];
         const SurfaceVertex& v = vertex(w_c, sp);
         const Vec3 l = v.frame.to_local(w_l);
         if (leaks(dot(w_l, v.ng), l.z)) return 0.f;
@@ -85,7 +97,13 @@ public:
     }
     /// The density with which light-side sampling (sample_light) from w_l produces w_c (non-delta).
     float pdf_light(const Vec3& w_l, const Vec3& w_c) const {
-        const ShadingPoint& sp = shading(w_l);
+        const int s = shaded_side(w_l);
+        if (m_flat_lambert[s]) {  // ε = 0 and the Lambert density of either mode
+            const Vec3 n = turned_ng(s);
+            const float cos_c = dot(w_c, n);
+            return dot(w_l, n) > 0.f && cos_c > 0.f ? cosine_hemisphere_pdf(cos_c) : 0.f;
+        }
+        const ShadingPoint& sp = m_sp[s];
         const SurfaceVertex& v = vertex(w_l, sp);
         const float eps = mixture_share(v, sp.bsdf());
         const Vec3 c = v.frame.to_local(w_c);
@@ -179,7 +197,9 @@ public:
     /// |w_l·ns| for the camera side's frame of w_c: the shading cosine a connection toward w_l carries at a camera
     /// vertex.
     float camera_cosine(const Vec3& w_c, const Vec3& w_l) const {
-        const ShadingPoint& sp = shading(w_c);
+        const int s = shaded_side(w_c);
+        if (m_flat_lambert[s]) return std::fabs(dot(w_l, m_hit.ng));  // the frame's normal is ±ng
+        const ShadingPoint& sp = m_sp[s];
         const SurfaceVertex& v = vertex(w_c, sp);
         return std::fabs(dot(w_l, v.frame.n));
     }
@@ -194,6 +214,25 @@ public:
 
 private:
     int side(const Vec3& w) const { return dot(w, m_hit.ng) < 0.f ? 1 : 0; }
+    /// side(w), that side shaded.
+    int shaded_side(const Vec3& w) const {
+        const int s = side(w);
+        if (__builtin_expect(!m_shaded[s], 0)) shade_side(s, w);
+        return s;
+    }
+    /// ng turned to side s: the normal of both of that side's frames where it is flat (see classify_side).
+    Vec3 turned_ng(int s) const { return s == 1 ? -m_hit.ng : m_hit.ng; }
+
+    /// Notes whether side s (just shaded) is a lone Lambert lobe on a flat face with ε = 0 (mixture_share: ns = ng
+    /// gives ns·ng = |ng|²). There f, the two densities, the camera cosine and the adjoint factor reduce to the
+    /// cosines about ng turned to the side: the vertex's frame on that side is Frame(±ng) for every direction (ns =
+    /// ng: both of its frames are ng's), its z is that dot product, leaks() only rejects a zero one, and Lambert's f
+    /// and density test the same two signs — the same values as the general path, without the frame.
+    void classify_side(int s) const {
+        const Color* colour = m_sp[s].bsdf().lone_lambert();
+        m_flat_lambert[s] = colour && flat(m_sp[s]) && !(dot(m_hit.ng, m_hit.ng) < 1.f - 1e-5f);
+        if (m_flat_lambert[s]) m_lambert_colour[s] = *colour;
+    }
 
     /// Whether the shading normal is the geometric one (a flat face, no bump): then ε = 0, both frames of a side
     /// are ng's, and no direction above ng leaks.
@@ -225,6 +264,7 @@ private:
         m_sp[s] = m_scene.shade(m_hit, w);
         if (m_subset) m_sp[s].own(m_subset->apply(m_sp[s].bsdf()));
         m_shaded[s] = true;
+        classify_side(s);
     }
     /// SurfaceVertex::at(hit, sp.ns, w) for w's side (sp: that side's shading point). The vertex depends on w only
     /// through its side and whether w is above that side's shading normal (the frame is then built on ns, else on
@@ -266,6 +306,8 @@ private:
     const LobeSubset* m_subset = nullptr;
     mutable ShadingPoint m_sp[2];
     mutable bool m_shaded[2] = {false, false};
+    mutable bool m_flat_lambert[2] = {false, false};  // classify_side
+    mutable Color m_lambert_colour[2];
     // [side][frame on ns]: see vertex(). Raw storage: most vertices use one of the four, and zero-filling them all
     // would cost more than making that one.
     static_assert(std::is_trivially_destructible_v<SurfaceVertex>, "VertexBsdf keeps its vertices in raw storage");
